@@ -1,0 +1,277 @@
+#include "common/config/config.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace cosim::config {
+
+namespace {
+std::string fmt_num(double v) { return fmt::format("{:g}", v); }
+
+// Walk (and create) the path a.b.0.c inside root; returns the node to assign.
+void apply_override(YAML::Node root, const std::string& assignment, DocumentContext& ctx) {
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError(fmt::format("--set {}: expected key.path=value", assignment));
+  std::string path = assignment.substr(0, eq);
+  std::string value = assignment.substr(eq + 1);
+  YAML::Node parsed;
+  try {
+    parsed = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(fmt::format("--set {}: value is not valid YAML: {}", path, e.msg));
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) {
+    if (p.empty()) throw ConfigError(fmt::format("--set {}: empty component in key path", path));
+    parts.push_back(p);
+  }
+  YAML::Node cur(root);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    const bool last = i + 1 == parts.size();
+    bool is_index = !p.empty() && std::all_of(p.begin(), p.end(), ::isdigit);
+    YAML::Node next;
+    if (cur.IsSequence()) {
+      if (!is_index)
+        throw ConfigError(fmt::format("--set {}: '{}' is a list, expected a numeric index", path, p));
+      std::size_t idx = std::stoul(p);
+      if (idx >= cur.size())
+        throw ConfigError(fmt::format("--set {}: index {} out of range (list has {} entries)", path, idx,
+                                      cur.size()));
+      if (last) {
+        cur[idx] = parsed;
+        break;
+      }
+      next.reset(cur[idx]);
+    } else {
+      if (cur.IsScalar())
+        throw ConfigError(fmt::format("--set {}: '{}' is a value, not a section", path, parts[i - 1]));
+      if (last) {
+        cur[p] = parsed;
+        break;
+      }
+      if (!cur[p] || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
+      next.reset(cur[p]);
+    }
+    cur.reset(next);
+  }
+  ctx.overridden.insert(path);
+}
+
+Node make_root(YAML::Node root, const std::string& name, const std::vector<std::string>& overrides) {
+  auto ctx = std::make_shared<DocumentContext>();
+  ctx->file = name;
+  if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) throw ConfigError(fmt::format("{}:1: expected a YAML mapping of sections at the top level", name));
+  for (const auto& o : overrides) apply_override(root, o, *ctx);
+  return Node(root, "", ctx);
+}
+}  // namespace
+
+Check<double> positive() {
+  return [](const double& v) { return v > 0 ? std::string() : std::string("a number > 0"); };
+}
+Check<double> non_negative() {
+  return [](const double& v) { return v >= 0 ? std::string() : std::string("a number >= 0"); };
+}
+Check<double> in_range(double lo, double hi) {
+  return [lo, hi](const double& v) {
+    return (v >= lo && v <= hi) ? std::string() : fmt::format("a number in [{}, {}]", fmt_num(lo), fmt_num(hi));
+  };
+}
+Check<double> in_open_closed(double lo, double hi) {
+  return [lo, hi](const double& v) {
+    return (v > lo && v <= hi) ? std::string() : fmt::format("a number in ({}, {}]", fmt_num(lo), fmt_num(hi));
+  };
+}
+Check<int> int_at_least(int lo) {
+  return [lo](const int& v) { return v >= lo ? std::string() : fmt::format("an integer >= {}", lo); };
+}
+Check<std::string> one_of(std::vector<std::string> choices) {
+  return [choices](const std::string& v) {
+    if (std::find(choices.begin(), choices.end(), v) != choices.end()) return std::string();
+    std::string list;
+    for (const auto& c : choices) list += (list.empty() ? "" : " | ") + c;
+    std::set<std::string> cs(choices.begin(), choices.end());
+    std::string best = closest(v, cs);
+    return fmt::format("one of {}{}", list, best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best));
+  };
+}
+
+Node::Node(YAML::Node node, std::string path, std::shared_ptr<DocumentContext> ctx)
+    : node_(node), path_(std::move(path)), ctx_(std::move(ctx)) {}
+
+bool Node::has(const std::string& key) const {
+  if (!node_.IsMap()) return false;
+  YAML::Node n = node_[key];
+  return n && !n.IsNull();
+}
+
+bool Node::child_is_map(const std::string& key) const {
+  if (!node_.IsMap()) return false;
+  YAML::Node n = node_[key];
+  return n && n.IsMap();
+}
+
+YAML::Node Node::at(const std::string& key) const {
+  if (!node_.IsMap()) fail("", "a section (key: value mapping), got " + describe(node_));
+  return node_[key];
+}
+
+std::string Node::key_path(const std::string& key) const {
+  if (key.empty()) return path_;
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+std::string Node::describe(const YAML::Node& n) const {
+  if (!n) return "nothing";
+  switch (n.Type()) {
+    case YAML::NodeType::Scalar: return "'" + n.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a section";
+    default: return "nothing";
+  }
+}
+
+std::string Node::where(const std::string& key) const {
+  std::string kp = key_path(key);
+  for (const auto& o : ctx_->overridden)
+    if (kp == o || kp.rfind(o + ".", 0) == 0) return fmt::format("--set {}: {}", o, kp);
+  YAML::Node n = node_;
+  if (!key.empty() && node_.IsMap() && node_[key]) n.reset(node_[key]);
+  int line = n.Mark().is_null() ? -1 : n.Mark().line + 1;
+  if (line < 0) line = node_.Mark().is_null() ? 1 : node_.Mark().line + 1;
+  return fmt::format("{}:{}: {}", ctx_->file, line, kp.empty() ? "(top level)" : kp);
+}
+
+void Node::fail(const std::string& key, const std::string& expected) const {
+  throw ConfigError(fmt::format("{}: expected {}", where(key), expected));
+}
+
+std::vector<double> Node::get_vector(const std::string& key, std::size_t min_len, std::size_t max_len,
+                                     std::optional<std::vector<double>> fallback, Check<double> check) {
+  used_.insert(key);
+  YAML::Node n = at(key);
+  if (!n || n.IsNull()) {
+    if (fallback) return *fallback;
+    fail(key, fmt::format("a list of {} to {} numbers, but the key is missing", min_len, max_len));
+  }
+  std::string expected = min_len == max_len ? fmt::format("a list of {} numbers", min_len)
+                                            : fmt::format("a list of {} to {} numbers", min_len, max_len);
+  if (n.IsScalar() && min_len <= 1) {  // a single number is accepted for a 1-element list
+    Node self(node_, path_, ctx_);
+    double v = self.get<double>(key, 0.0, check);
+    return {v};
+  }
+  if (!n.IsSequence() || n.size() < min_len || n.size() > max_len) fail(key, expected + ", got " + describe(n));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    double v = 0;
+    if (!detail::convert(n[i], v)) fail(key, expected + ", entry " + std::to_string(i) + " is " + describe(n[i]));
+    if (check) {
+      std::string e = check(v);
+      if (!e.empty()) fail(key, fmt::format("entries that are {}, entry {} is {}", e, i, describe(n[i])));
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+Node Node::child(const std::string& key) {
+  used_.insert(key);
+  YAML::Node n = at(key);
+  if (!n || n.IsNull()) fail(key, "a section, but the key is missing");
+  if (!n.IsMap()) fail(key, "a section (key: value mapping), got " + describe(n));
+  return Node(n, key_path(key), ctx_);
+}
+
+std::optional<Node> Node::optional_child(const std::string& key) {
+  if (!has(key)) {
+    used_.insert(key);
+    return std::nullopt;
+  }
+  return child(key);
+}
+
+std::vector<Node> Node::list(const std::string& key) {
+  used_.insert(key);
+  YAML::Node n = at(key);
+  if (!n || n.IsNull()) fail(key, "a list, but the key is missing");
+  if (!n.IsSequence()) fail(key, "a list, got " + describe(n));
+  return Node(n, key_path(key), ctx_).elements();
+}
+
+std::vector<Node> Node::elements() const {
+  if (!node_.IsSequence()) fail("", "a list, got " + describe(node_));
+  std::vector<Node> out;
+  for (std::size_t i = 0; i < node_.size(); ++i)
+    out.emplace_back(node_[i], path_ + "." + std::to_string(i), ctx_);
+  return out;
+}
+
+void Node::finish() const {
+  if (!node_.IsMap()) return;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    std::string k = it->first.as<std::string>();
+    if (used_.count(k)) continue;
+    std::string best = closest(k, used_);
+    std::string valid;
+    for (const auto& u : used_) valid += (valid.empty() ? "" : ", ") + u;
+    std::string kp = key_path(k);
+    int line = it->first.Mark().is_null() ? 0 : it->first.Mark().line + 1;
+    std::string loc = line > 0 ? fmt::format("{}:{}: {}", ctx_->file, line, kp) : where(k);
+    throw ConfigError(fmt::format("{}: unknown key{}; valid keys here: {}", loc,
+                                  best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best),
+                                  valid.empty() ? "(none)" : valid));
+  }
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string closest(const std::string& word, const std::set<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(3, word.size() / 2) + 1;
+  for (const auto& c : candidates) {
+    std::size_t d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+Node load_file(const std::string& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open scene file", file));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_string(ss.str(), file, overrides);
+}
+
+Node load_string(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  return make_root(root, name, overrides);
+}
+
+}  // namespace cosim::config

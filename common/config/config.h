@@ -1,0 +1,108 @@
+// Validated reading of YAML scene files.
+//
+// Every value is read through a Node, which remembers the keys it was asked for. After a section
+// has been read, finish() rejects any key nobody asked for and suggests the closest valid one.
+// All errors are ConfigError with the message "file:line: key.path: what was expected".
+// Command-line overrides (--set a.b.c=value) are applied to the YAML tree before reading; a value
+// that came from an override is reported as "--set a.b.c" instead of a line number.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cosim::config {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Shared by all Nodes of one document.
+struct DocumentContext {
+  std::string file;
+  std::set<std::string> overridden;  // key paths set with --set
+};
+
+// A range or set check applied to a value after conversion; returns an empty string when fine,
+// otherwise the description of what was expected (e.g. "a number > 0").
+template <class T>
+using Check = std::function<std::string(const T&)>;
+
+Check<double> positive();
+Check<double> non_negative();
+Check<double> in_range(double lo, double hi);             // lo <= v <= hi
+Check<double> in_open_closed(double lo, double hi);       // lo <  v <= hi
+Check<int> int_at_least(int lo);
+Check<std::string> one_of(std::vector<std::string> choices);
+
+class Node {
+ public:
+  Node(YAML::Node node, std::string path, std::shared_ptr<DocumentContext> ctx);
+
+  const std::string& path() const { return path_; }
+  bool has(const std::string& key) const;
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+  std::size_t size() const { return node_.size(); }
+
+  template <class T>
+  T get(const std::string& key, const T& fallback, Check<T> check = {});
+  template <class T>
+  T require(const std::string& key, Check<T> check = {});
+  // The scalar value of this node itself (for list elements).
+  template <class T>
+  T as(Check<T> check = {}) const;
+
+  // Fixed-size or bounded lists of numbers.
+  std::vector<double> get_vector(const std::string& key, std::size_t min_len, std::size_t max_len,
+                                 std::optional<std::vector<double>> fallback = std::nullopt,
+                                 Check<double> check = {});
+
+  Node child(const std::string& key);                 // required map
+  std::optional<Node> optional_child(const std::string& key);
+  std::vector<Node> list(const std::string& key);     // required sequence of entries
+  std::vector<Node> elements() const;                 // this node as a sequence
+
+  // Mark a key as known without reading it (it belongs to another reader).
+  void skip(const std::string& key) { used_.insert(key); }
+  bool child_is_map(const std::string& key) const;
+
+  // Reject keys that no get/require/child call asked for (with a suggestion for typos).
+  void finish() const;
+
+  // "file:line: path" prefix for messages about this node or one of its keys.
+  std::string where(const std::string& key = "") const;
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+
+ private:
+  YAML::Node at(const std::string& key) const;
+  std::string key_path(const std::string& key) const;
+  std::string describe(const YAML::Node& n) const;
+
+  YAML::Node node_;
+  std::string path_;
+  std::shared_ptr<DocumentContext> ctx_;
+  mutable std::set<std::string> used_;
+};
+
+// Parse a YAML file, apply "a.b.c=value" overrides, return the root node.
+Node load_file(const std::string& file, const std::vector<std::string>& overrides = {});
+Node load_string(const std::string& text, const std::string& name = "<string>",
+                 const std::vector<std::string>& overrides = {});
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+std::string closest(const std::string& word, const std::set<std::string>& candidates);
+
+}  // namespace cosim::config
+
+#include "common/config/config_impl.h"

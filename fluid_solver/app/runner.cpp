@@ -1,0 +1,148 @@
+#include "fluid_solver/app/runner.h"
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <cmath>
+
+#include "common/config/config.h"
+#include "common/io/atomic_file.h"
+#include "common/util/progress.h"
+#include "fluid_solver/io/fluid_output.h"
+
+namespace cosim::fluid {
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+void on_signal(int) { g_interrupted = true; }
+
+struct RunRecord {
+  std::string status = "running", error;
+  double wall = 0;
+  nlohmann::json start_totals;
+};
+
+void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim, const RunRecord& rec) {
+  const FluidScene& s = sim.scene();
+  nlohmann::json j;
+  j["status"] = rec.status;
+  if (!rec.error.empty()) j["error"] = rec.error;
+  j["scene"] = s.name;
+  j["dimension"] = s.dim;
+  j["cells"] = std::vector<int>(s.cells.begin(), s.cells.begin() + s.dim);
+  j["phases"] = s.num_phases();
+  j["flux"] = to_string(s.flux);
+  j["final_time"] = sim.time();
+  j["t_end"] = s.t_end;
+  j["steps"] = sim.steps();
+  j["wall_time_s"] = rec.wall;
+  const double updates = static_cast<double>(sim.steps()) * static_cast<double>(sim.interior_cells());
+  j["cell_updates"] = updates;
+  j["cell_updates_per_s"] = rec.wall > 0 ? updates / rec.wall : 0.0;
+  j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());
+  j["threads"] = omp_get_max_threads();
+  j["totals"] = {{"start", rec.start_totals}, {"end", totals_json(s, sim.totals())}};
+  io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
+}
+}  // namespace
+
+int run_fluid(const RunOptions& opt) {
+  FluidScene scene;
+  try {
+    scene = load_fluid_scene(opt.scene_file, opt.overrides);
+    if (opt.threads > 0) scene.threads = opt.threads;
+  } catch (const config::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
+    spdlog::error("--out {}: cannot create the output directory ({})", opt.out_dir.string(), ec.message());
+    return 4;
+  }
+
+  std::unique_ptr<FluidSimulation> sim;
+  try {
+    sim = make_simulation(scene);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
+    return 2;
+  }
+  spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim,
+               sim->interior_cells(), scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  io::SnapshotSeries series(opt.out_dir, "fluid");
+  RunRecord rec;
+  rec.start_totals = totals_json(scene, sim->totals());
+  util::Progress progress(!opt.quiet);
+  int code = 0;
+  double t_last = 0.0;
+  long steps_last = 0;
+  double rate = 0.0;
+  try {
+    write_snapshot(series, *sim);
+    for (double t_out : scene.output_times) {
+      while (sim->time() < t_out * (1.0 - 1e-14) && sim->steps() < scene.max_steps) {
+        if (g_interrupted) throw std::runtime_error("interrupted");
+        double dt = sim->stable_dt();
+        const double remaining = t_out - sim->time();
+        if (dt >= remaining) dt = remaining;
+        else if (dt > 0.5 * remaining) dt = 0.5 * remaining;
+        if (!(dt > 0.0) || !std::isfinite(dt))
+          throw StateError(fmt::format("time step collapsed to {:g} at t={:.9g}", dt, sim->time()));
+        sim->advance(dt);
+        const double now = progress.elapsed();
+        if (now - t_last > 1.0) {
+          rate = static_cast<double>(sim->steps() - steps_last) * static_cast<double>(sim->interior_cells()) /
+                 (now - t_last);
+          t_last = now;
+          steps_last = sim->steps();
+        }
+        progress.update(sim->steps(), sim->time(), scene.t_end,
+                        fmt::format("dt={:.3g}  {:.3g} Mcell-updates/s", dt, rate * 1e-6));
+      }
+      write_snapshot(series, *sim);
+      if (sim->steps() >= scene.max_steps) {
+        spdlog::warn("stopped at max_steps = {} (t = {:.6g})", scene.max_steps, sim->time());
+        break;
+      }
+    }
+    rec.status = "completed";
+  } catch (const StateError& e) {
+    rec.status = "failed";
+    rec.error = e.what();
+    spdlog::error("{}", e.what());
+    code = 3;
+  } catch (const std::runtime_error& e) {
+    if (g_interrupted) {
+      rec.status = "interrupted";
+      spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim->time());
+      code = 130;
+    } else {
+      rec.status = "failed";
+      rec.error = e.what();
+      spdlog::error("{}", e.what());
+      code = 4;
+    }
+  }
+  progress.finish();
+  rec.wall = progress.elapsed();
+  try {
+    write_summary(opt.out_dir, *sim, rec);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot write summary.json: {}", e.what());
+    return code ? code : 4;
+  }
+  if (code == 0)
+    spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {} snapshot(s) in {}", sim->time(), sim->steps(),
+                 rec.wall, series.count(), opt.out_dir.string());
+  return code;
+}
+
+}  // namespace cosim::fluid

@@ -1,0 +1,45 @@
+// Uniform Cartesian grid with NG ghost layers on each side of every active direction.
+// Cells are stored with i (x) fastest; inactive directions have size 1 and no ghosts.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+namespace cosim::fluid {
+
+template <int DIM>
+struct Grid {
+  static constexpr int NG = 2;  // MUSCL needs two ghost layers
+  std::array<int, 3> n{1, 1, 1};        // interior cells per direction
+  std::array<int, 3> padded{1, 1, 1};   // with ghosts
+  std::array<std::ptrdiff_t, 3> stride{1, 0, 0};
+  std::array<double, 3> lower{0, 0, 0}, dx{1, 1, 1};
+  std::size_t total = 1;  // padded cell count
+
+  Grid() = default;
+  Grid(const std::array<int, 3>& cells, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+    for (int d = 0; d < 3; ++d) {
+      n[d] = d < DIM ? cells[d] : 1;
+      padded[d] = d < DIM ? n[d] + 2 * NG : 1;
+      lower[d] = lo[d];
+      dx[d] = d < DIM ? (hi[d] - lo[d]) / n[d] : 1.0;
+    }
+    stride = {1, padded[0], static_cast<std::ptrdiff_t>(padded[0]) * padded[1]};
+    total = static_cast<std::size_t>(padded[0]) * padded[1] * padded[2];
+  }
+
+  static constexpr int offset(int d) { return d < DIM ? NG : 0; }
+  // Linear index of interior-numbered cell (i,j,k); ghosts have negative or >= n indices.
+  std::size_t index(int i, int j = 0, int k = 0) const {
+    return static_cast<std::size_t>((i + offset(0)) + stride[1] * (j + offset(1)) + stride[2] * (k + offset(2)));
+  }
+  std::size_t interior_count() const { return static_cast<std::size_t>(n[0]) * n[1] * n[2]; }
+  double center(int d, int i) const { return lower[d] + (i + 0.5) * dx[d]; }
+  double cell_volume() const {
+    double v = 1;
+    for (int d = 0; d < DIM; ++d) v *= dx[d];
+    return v;
+  }
+};
+
+}  // namespace cosim::fluid

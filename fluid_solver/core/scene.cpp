@@ -1,0 +1,389 @@
+#include "fluid_solver/core/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/eos/materials.h"
+
+namespace cosim::fluid {
+
+using config::Node;
+
+namespace {
+
+const std::vector<std::string> kAxes = {"x", "y", "z"};
+
+std::array<double, 3> read_point(Node& n, const std::string& key, int dim, std::optional<std::vector<double>> fb = {}) {
+  auto v = n.get_vector(key, dim, dim, fb);
+  std::array<double, 3> out{0, 0, 0};
+  for (int d = 0; d < dim; ++d) out[d] = v[d];
+  return out;
+}
+
+eos::StiffenedGas read_eos(Node& n, const std::string& phase_name, std::string& material) {
+  material = n.get<std::string>("material", "custom");
+  eos::StiffenedGas sg;
+  if (material != "custom") {
+    const auto* m = eos::find_material(material);
+    if (!m) {
+      auto names = eos::material_names();
+      names.push_back("custom");
+      n.fail("material", config::one_of(names)(material));
+    }
+    sg = m->sg;
+  }
+  auto e = n.optional_child("eos");
+  if (e) {
+    std::string type = e->get<std::string>("type", "stiffened_gas", config::one_of({"ideal_gas", "stiffened_gas"}));
+    sg.gamma = e->get<double>("gamma", sg.gamma, config::in_open_closed(1.0, 100.0));
+    if (type == "stiffened_gas") sg.pinf = e->get<double>("pinf", sg.pinf, config::non_negative());
+    else sg.pinf = 0.0;
+    sg.q = e->get<double>("q", sg.q);
+    sg.cv = e->get<double>("cv", sg.cv, config::positive());
+    e->finish();
+  } else if (material == "custom") {
+    n.fail("eos", "an eos section (type, gamma, pinf, cv) for phase '" + phase_name + "' without a material");
+  }
+  return sg;
+}
+
+// A state: top-level defaults (rho | T, p, velocity, alpha list) with optional per-phase overrides.
+MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
+  const int np = static_cast<int>(phases.size());
+  MixtureValue out(np);
+  double p = n.get<double>("p", std::nan(""));
+  std::optional<double> rho, T;
+  if (n.has("rho")) rho = n.get<double>("rho", 0, config::positive());
+  if (n.has("T")) T = n.get<double>("T", 0, config::positive());
+  n.skip("rho");
+  n.skip("T");
+  auto vel = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0));
+  std::vector<double> alphas;
+  if (np == 1) {
+    alphas = {1.0};
+    n.get<double>("alpha", 1.0, config::in_range(1.0, 1.0));
+  } else {
+    alphas = n.get_vector("alpha", np, np, std::vector<double>{}, config::in_range(0.0, 1.0));
+  }
+  std::vector<std::optional<Node>> per_phase(np);
+  if (n.has("phases")) {
+    auto list = n.list("phases");
+    if (static_cast<int>(list.size()) != np)
+      n.fail("phases", fmt::format("a list of {} per-phase entries (one per phase)", np));
+    for (int k = 0; k < np; ++k) per_phase[k] = list[k];
+  }
+  n.skip("phases");
+  for (int k = 0; k < np; ++k) {
+    PhaseValue& v = out[k];
+    double pk = p, alpha = alphas.empty() ? std::nan("") : alphas[k];
+    std::optional<double> rk = rho, Tk = T;
+    auto velk = vel;
+    if (per_phase[k]) {
+      Node& q = *per_phase[k];
+      for (const char* k2 : {"p", "alpha", "rho", "T"}) q.skip(k2);
+      if (q.has("p")) pk = q.get<double>("p", 0);
+      if (q.has("alpha")) alpha = q.get<double>("alpha", 0, config::in_range(0.0, 1.0));
+      if (q.has("rho")) {
+        rk = q.get<double>("rho", 0, config::positive());
+        Tk.reset();
+      }
+      if (q.has("T")) {
+        Tk = q.get<double>("T", 0, config::positive());
+        if (!q.has("rho")) rk.reset();
+      }
+      velk = read_point(q, "velocity", dim, std::vector<double>(vel.begin(), vel.begin() + dim));
+      q.finish();
+    }
+    if (std::isnan(pk)) n.fail("p", fmt::format("a pressure [Pa] for phase '{}'", phases[k].name));
+    if (std::isnan(alpha)) n.fail("alpha", fmt::format("a list of {} volume fractions", np));
+    if (!rk && !Tk) n.fail("rho", fmt::format("rho [kg/m^3] or T [K] for phase '{}'", phases[k].name));
+    v.alpha = alpha;
+    v.p = pk;
+    v.rho = rk ? *rk : phases[k].eos.density_from_pT(pk, *Tk);
+    v.velocity = velk;
+    if (!phases[k].eos.admissible(v.rho, v.p))
+      n.fail("p", fmt::format("p + pinf > 0 for phase '{}' (p = {:g} Pa, pinf = {:g} Pa)", phases[k].name, v.p,
+                              phases[k].eos.pinf));
+  }
+  if (np > 1) {
+    double s = 0;
+    for (auto& v : out) s += v.alpha;
+    if (std::abs(s - 1.0) > 1e-9) n.fail("alpha", fmt::format("volume fractions that sum to 1 (they sum to {:.12g})", s));
+  }
+  n.finish();
+  return out;
+}
+
+Boundary read_boundary(Node& n, const std::string& key, const std::vector<Phase>& phases, int dim) {
+  Boundary b;
+  n.skip(key);
+  if (!n.has(key)) return b;
+  // Either a plain word or a section {type: inflow, state: {...}}.
+  std::string type;
+  std::optional<Node> sec;
+  auto choices = config::one_of({"transmissive", "wall", "inflow", "periodic"});
+  if (n.child_is_map(key)) {
+    sec = n.child(key);
+    type = sec->require<std::string>("type", choices);
+  } else {
+    type = n.get<std::string>(key, "transmissive", choices);
+  }
+  if (type == "transmissive") b.kind = BoundaryKind::Transmissive;
+  else if (type == "wall") b.kind = BoundaryKind::Wall;
+  else if (type == "periodic") b.kind = BoundaryKind::Periodic;
+  else {
+    b.kind = BoundaryKind::Inflow;
+    if (!sec) n.fail(key, "a section {type: inflow, state: {...}} for an inflow boundary");
+    Node st = sec->child("state");
+    b.inflow = read_state(st, phases, dim);
+  }
+  if (sec) sec->finish();
+  return b;
+}
+
+Region read_region(Node& n, const std::vector<Phase>& phases, int dim) {
+  Region r;
+  int shapes = 0;
+  if (auto box = n.optional_child("box")) {
+    r.shape = Region::Shape::Box;
+    r.a = read_point(*box, "lower", dim);
+    r.b = read_point(*box, "upper", dim);
+    box->finish();
+    ++shapes;
+  }
+  if (auto sph = n.optional_child("sphere")) {
+    r.shape = Region::Shape::Sphere;
+    r.a = read_point(*sph, "center", dim);
+    r.radius = sph->require<double>("radius", config::positive());
+    sph->finish();
+    ++shapes;
+  }
+  if (auto hs = n.optional_child("half_space")) {
+    r.shape = Region::Shape::HalfSpace;
+    r.a = read_point(*hs, "point", dim);
+    r.b = read_point(*hs, "normal", dim);
+    hs->finish();
+    ++shapes;
+  }
+  if (shapes != 1) n.fail("box", "exactly one shape per region: box, sphere or half_space");
+  Node st = n.child("state");
+  r.value = read_state(st, phases, dim);
+  n.finish();
+  return r;
+}
+
+Profile read_profile(Node& n, int dim) {
+  Profile p;
+  std::string type = n.require<std::string>("type", config::one_of({"density_wave", "gresho_vortex"}));
+  if (type == "density_wave") {
+    p.kind = Profile::Kind::DensityWave;
+    p.rho0 = n.get<double>("rho", 1.0, config::positive());
+    p.amplitude = n.get<double>("amplitude", 0.2, config::in_range(0.0, 0.99));
+    p.p0 = n.get<double>("p", 1.0, config::positive());
+    p.wave_number = read_point(n, "wave_number", dim, std::vector<double>(dim, 1.0));
+    p.velocity = read_point(n, "velocity", dim, std::vector<double>(dim, 1.0));
+  } else {
+    if (dim < 2) n.fail("type", "gresho_vortex needs a 2D or 3D mesh");
+    p.kind = Profile::Kind::GreshoVortex;
+    p.center = read_point(n, "center", dim);
+    p.radius_scale = n.get<double>("radius_scale", 1.0, config::positive());
+    p.speed = n.get<double>("speed", 1.0, config::positive());
+    p.mach = n.get<double>("mach", 0.1, config::in_open_closed(0.0, 10.0));
+    p.rho0 = n.get<double>("rho", 1.0, config::positive());
+  }
+  n.finish();
+  return p;
+}
+
+}  // namespace
+
+bool Region::contains(const std::array<double, 3>& x, int dim) const {
+  switch (shape) {
+    case Shape::Box:
+      for (int d = 0; d < dim; ++d)
+        if (x[d] < a[d] || x[d] > b[d]) return false;
+      return true;
+    case Shape::Sphere: {
+      double r2 = 0;
+      for (int d = 0; d < dim; ++d) r2 += (x[d] - a[d]) * (x[d] - a[d]);
+      return r2 <= radius * radius;
+    }
+    case Shape::HalfSpace: {
+      double s = 0;
+      for (int d = 0; d < dim; ++d) s += (x[d] - a[d]) * b[d];
+      return s >= 0;
+    }
+  }
+  return false;
+}
+
+FluidScene read_fluid_scene(Node& root) {
+  FluidScene s;
+  Node f = root.child("fluid");
+
+  // mesh
+  Node mesh = f.child("mesh");
+  auto cells = mesh.get_vector("cells", 1, 3);
+  s.dim = static_cast<int>(cells.size());
+  for (int d = 0; d < s.dim; ++d) {
+    if (cells[d] < 1 || cells[d] != std::floor(cells[d]) || cells[d] > 1e8)
+      mesh.fail("cells", "positive whole numbers of cells per direction");
+    s.cells[d] = static_cast<int>(cells[d]);
+  }
+  s.lower = read_point(mesh, "lower", s.dim, std::vector<double>(s.dim, 0.0));
+  s.upper = read_point(mesh, "upper", s.dim);
+  for (int d = 0; d < s.dim; ++d)
+    if (!(s.upper[d] > s.lower[d])) mesh.fail("upper", "upper > lower in every direction");
+  mesh.finish();
+
+  // phases
+  auto plist = f.list("phases");
+  if (plist.empty() || plist.size() > 2) f.fail("phases", "one or two phases");
+  for (auto& pn : plist) {
+    Phase ph;
+    ph.name = pn.require<std::string>("name");
+    ph.eos = read_eos(pn, ph.name, ph.material);
+    pn.finish();
+    s.phases.push_back(ph);
+  }
+
+  // numerics
+  if (auto num = f.optional_child("numerics")) {
+    std::string flux = num->get<std::string>("flux", "aufs", config::one_of({"aufs", "hllc", "rusanov"}));
+    s.flux = flux == "aufs" ? FluxKind::AUFS : flux == "hllc" ? FluxKind::HLLC : FluxKind::Rusanov;
+    std::string rec =
+        num->get<std::string>("reconstruction", "muscl", config::one_of({"first_order", "muscl"}));
+    s.reconstruction = rec == "muscl" ? Reconstruction::MUSCL : Reconstruction::FirstOrder;
+    std::string lim = num->get<std::string>("limiter", "van_leer", config::one_of({"minmod", "van_leer", "mc"}));
+    s.limiter = lim == "minmod" ? Limiter::Minmod : lim == "mc" ? Limiter::MC : Limiter::VanLeer;
+    s.low_mach = num->get<bool>("low_mach", false);
+    s.low_mach_cutoff = num->get<double>("low_mach_cutoff", 0.0, config::in_range(0.0, 1.0));
+    if (s.low_mach && s.reconstruction != Reconstruction::MUSCL)
+      num->fail("low_mach", "reconstruction: muscl (the correction modifies reconstructed face states)");
+    num->finish();
+  }
+
+  // time
+  Node time = f.child("time");
+  s.t_end = time.require<double>("end", config::positive());
+  s.cfl = time.get<double>("cfl", 0.4, config::in_open_closed(0.0, 1.0));
+  std::string integ = time.get<std::string>("integrator", "rk2", config::one_of({"rk2", "rk3"}));
+  s.integrator = integ == "rk3" ? TimeIntegrator::RK3 : TimeIntegrator::RK2;
+  s.max_steps = time.get<long>("max_steps", 100000000L, [](const long& v) {
+    return v >= 1 ? std::string() : std::string("an integer >= 1");
+  });
+  time.finish();
+
+  // boundaries
+  if (auto bn = f.optional_child("boundaries")) {
+    for (int d = 0; d < s.dim; ++d)
+      for (int side = 0; side < 2; ++side)
+        s.boundaries[d][side] =
+            read_boundary(*bn, kAxes[d] + (side == 0 ? "_lower" : "_upper"), s.phases, s.dim);
+    bn->finish();
+    for (int d = 0; d < s.dim; ++d) {
+      bool p0 = s.boundaries[d][0].kind == BoundaryKind::Periodic;
+      bool p1 = s.boundaries[d][1].kind == BoundaryKind::Periodic;
+      if (p0 != p1) bn->fail(kAxes[d] + "_upper", "periodic on both sides of an axis or on neither");
+    }
+  }
+
+  // exchange
+  if (auto ex = f.optional_child("exchange")) {
+    s.exchange.pressure_relaxation = ex->get<bool>("pressure_relaxation", true);
+    std::string vr = ex->get<std::string>("velocity_relaxation", "instant", config::one_of({"none", "instant", "drag"}));
+    s.exchange.velocity = vr == "none" ? VelocityRelaxation::None
+                          : vr == "drag" ? VelocityRelaxation::Drag
+                                         : VelocityRelaxation::Instant;
+    std::string dl = ex->get<std::string>("drag_law", "schiller_naumann",
+                                          config::one_of({"schiller_naumann", "clift_gauvin", "akhatov_vainshtein"}));
+    s.exchange.drag_law = dl == "clift_gauvin"        ? DragLaw::CliftGauvin
+                          : dl == "akhatov_vainshtein" ? DragLaw::AkhatovVainshtein
+                                                       : DragLaw::SchillerNaumann;
+    std::string ht = ex->get<std::string>("heat_transfer", "none", config::one_of({"none", "ranz_marshall"}));
+    s.exchange.heat_transfer = ht == "ranz_marshall";
+    s.exchange.particle_diameter = ex->get<double>("particle_diameter", 1e-4, config::positive());
+    s.exchange.gas_viscosity = ex->get<double>("gas_viscosity", 1.8e-5, config::positive());
+    s.exchange.gas_conductivity = ex->get<double>("gas_conductivity", 0.026, config::positive());
+    s.exchange.alpha_min = ex->get<double>("alpha_min", 1e-8, config::in_range(0.0, 0.01));
+    if (s.num_phases() == 1) ex->fail("velocity_relaxation", "no exchange section for a single-phase scene");
+    ex->finish();
+  }
+
+  // initial conditions
+  Node init = f.child("initial");
+  if (auto prof = init.optional_child("profile")) {
+    s.profile = read_profile(*prof, s.dim);
+    if (s.num_phases() != 1) init.fail("profile", "analytic profiles for single-phase scenes only");
+  }
+  if (auto st = init.optional_child("state")) {
+    s.background = read_state(*st, s.phases, s.dim);
+  } else if (s.profile.kind == Profile::Kind::None) {
+    init.fail("state", "a background state (or a profile)");
+  }
+  init.skip("regions");
+  if (init.has("regions"))
+    for (auto& rn : init.list("regions")) s.regions.push_back(read_region(rn, s.phases, s.dim));
+  init.finish();
+
+  // output
+  if (auto out = f.optional_child("output")) {
+    double interval = out->get<double>("interval", 0.0, config::non_negative());
+    out->skip("times");
+    if (out->has("times")) s.output_times = out->get_vector("times", 1, 100000, std::nullopt, config::positive());
+    if (interval > 0)
+      for (int i = 1; i * interval < s.t_end * (1 - 1e-12); ++i) s.output_times.push_back(i * interval);
+    out->finish();
+  }
+  s.output_times.push_back(s.t_end);
+  std::sort(s.output_times.begin(), s.output_times.end());
+  s.output_times.erase(std::remove_if(s.output_times.begin(), s.output_times.end(),
+                                      [&](double t) { return t > s.t_end; }),
+                       s.output_times.end());
+  s.output_times.erase(std::unique(s.output_times.begin(), s.output_times.end()), s.output_times.end());
+
+  s.threads = f.get<int>("threads", 0, config::int_at_least(0));
+  f.finish();
+  return s;
+}
+
+namespace {
+FluidScene read_document(Node root) {
+  FluidScene s = read_fluid_scene(root);
+  s.name = root.get<std::string>("name", "scene");
+  root.get<std::string>("description", "");
+  // Sections that belong to the other processes of a coupled scene are read by them.
+  for (const char* other : {"solid", "coupling", "launcher"}) root.skip(other);
+  root.finish();
+  return s;
+}
+}  // namespace
+
+FluidScene load_fluid_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  return read_document(config::load_file(file, overrides));
+}
+
+FluidScene parse_fluid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides) {
+  return read_document(config::load_string(yaml_text, "<scene>", overrides));
+}
+
+const char* to_string(FluxKind f) {
+  switch (f) {
+    case FluxKind::AUFS: return "aufs";
+    case FluxKind::HLLC: return "hllc";
+    case FluxKind::Rusanov: return "rusanov";
+  }
+  return "?";
+}
+const char* to_string(Limiter l) {
+  switch (l) {
+    case Limiter::Minmod: return "minmod";
+    case Limiter::VanLeer: return "van_leer";
+    case Limiter::MC: return "mc";
+  }
+  return "?";
+}
+
+}  // namespace cosim::fluid

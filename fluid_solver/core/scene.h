@@ -1,0 +1,113 @@
+// The fluid part of a scene, as read and validated from YAML (section `fluid:`).
+// Plain data: the solver never sees YAML.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/config/config.h"
+#include "common/eos/stiffened_gas.h"
+
+namespace cosim::fluid {
+
+enum class FluxKind { AUFS, HLLC, Rusanov };
+enum class Reconstruction { FirstOrder, MUSCL };
+enum class Limiter { Minmod, VanLeer, MC };
+enum class TimeIntegrator { RK2, RK3 };
+enum class BoundaryKind { Transmissive, Wall, Inflow, Periodic };
+enum class DragLaw { SchillerNaumann, CliftGauvin, AkhatovVainshtein };
+enum class VelocityRelaxation { None, Instant, Drag };
+
+// Primitive state of one phase at a point.
+struct PhaseValue {
+  double alpha = 1.0;
+  double rho = 1.0;
+  std::array<double, 3> velocity{0, 0, 0};
+  double p = 1.0;
+};
+using MixtureValue = std::vector<PhaseValue>;  // one entry per phase
+
+struct Phase {
+  std::string name;
+  std::string material;  // library name or "custom"
+  eos::StiffenedGas eos;
+};
+
+struct Boundary {
+  BoundaryKind kind = BoundaryKind::Transmissive;
+  MixtureValue inflow;  // for Inflow
+};
+
+struct Region {
+  enum class Shape { Box, Sphere, HalfSpace } shape = Shape::Box;
+  std::array<double, 3> a{0, 0, 0};  // box lower / sphere centre / half-space point
+  std::array<double, 3> b{0, 0, 0};  // box upper / half-space normal
+  double radius = 0;
+  MixtureValue value;
+  bool contains(const std::array<double, 3>& x, int dim) const;
+};
+
+struct Profile {
+  enum class Kind { None, DensityWave, GreshoVortex } kind = Kind::None;
+  // density wave: rho = rho0 (1 + amplitude sin(2 pi sum_d k_d x_d / L_d)), uniform velocity and p
+  double rho0 = 1.0, amplitude = 0.2, p0 = 1.0;
+  std::array<double, 3> wave_number{1, 0, 0};
+  std::array<double, 3> velocity{1, 0, 0};
+  // Gresho vortex (2D, in the x-y plane): peak speed `speed` at r = 0.2 radius_scale, Mach from `mach`.
+  std::array<double, 3> center{0.5, 0.5, 0.5};
+  double radius_scale = 1.0, speed = 1.0, mach = 0.1;
+};
+
+struct Exchange {
+  bool pressure_relaxation = true;
+  VelocityRelaxation velocity = VelocityRelaxation::Instant;
+  DragLaw drag_law = DragLaw::SchillerNaumann;
+  bool heat_transfer = false;
+  double particle_diameter = 1e-4;  // [m]
+  double gas_viscosity = 1.8e-5;    // [Pa s]
+  double gas_conductivity = 0.026;  // [W/(m K)]
+  double alpha_min = 1e-8;          // volume-fraction floor
+};
+
+struct FluidScene {
+  std::string name;
+  int dim = 1;
+  std::array<int, 3> cells{1, 1, 1};
+  std::array<double, 3> lower{0, 0, 0}, upper{1, 1, 1};
+  std::vector<Phase> phases;
+  // boundaries[d][0] = lower side, [d][1] = upper side
+  std::array<std::array<Boundary, 2>, 3> boundaries{};
+
+  FluxKind flux = FluxKind::AUFS;
+  Reconstruction reconstruction = Reconstruction::MUSCL;
+  Limiter limiter = Limiter::VanLeer;
+  bool low_mach = false;
+  double low_mach_cutoff = 0.0;
+  TimeIntegrator integrator = TimeIntegrator::RK2;
+  double cfl = 0.4;
+  double t_end = 0.0;
+  long max_steps = 100000000;
+  Exchange exchange;
+
+  MixtureValue background;
+  std::vector<Region> regions;
+  Profile profile;
+
+  std::vector<double> output_times;  // sorted, in (0, t_end]
+  int threads = 0;                   // 0: OpenMP default
+
+  int num_phases() const { return static_cast<int>(phases.size()); }
+};
+
+// Read the `fluid:` section of a scene document. Throws config::ConfigError.
+FluidScene read_fluid_scene(config::Node& root);
+// Read the whole document (top-level `name`, `description` and `fluid`), rejecting unknown sections.
+FluidScene load_fluid_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+FluidScene parse_fluid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides = {});
+
+const char* to_string(FluxKind);
+const char* to_string(Limiter);
+
+}  // namespace cosim::fluid

@@ -1,0 +1,55 @@
+// Type-erased handle on a fluid solver instance. The dimension, phase count and flux are
+// compile-time parameters of the kernels; this interface is the one runtime seam, crossed once
+// per time step, never per cell.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fluid_solver/core/scene.h"
+
+namespace cosim::fluid {
+
+// Thrown when a state cannot be kept admissible (negative density, p + pinf <= 0, alpha outside (0,1)).
+class StateError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Interior cell-centred fields of one phase, i fastest. velocity holds 3 components per cell.
+struct PhaseFields {
+  std::vector<double> alpha, rho, velocity, p, T;
+};
+
+struct PhaseTotals {
+  double mass = 0;
+  std::array<double, 3> momentum{0, 0, 0};
+  double energy = 0;
+};
+
+class FluidSimulation {
+ public:
+  virtual ~FluidSimulation() = default;
+  virtual const FluidScene& scene() const = 0;
+  virtual double time() const = 0;
+  virtual long steps() const = 0;
+  // Largest stable time step for the current state (CFL from the scene).
+  virtual double stable_dt() = 0;
+  // One full time step of size dt (all Runge-Kutta stages, relaxation and exchange sources).
+  virtual void advance(double dt) = 0;
+  virtual PhaseFields phase_fields(int phase) const = 0;
+  virtual std::vector<PhaseTotals> totals() const = 0;
+  virtual std::size_t interior_cells() const = 0;
+  virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
+};
+
+std::unique_ptr<FluidSimulation> make_simulation(const FluidScene& scene);
+
+// Advance with CFL-limited steps until t_target is reached exactly (or max_steps).
+// Returns the number of steps taken.
+long advance_to(FluidSimulation& sim, double t_target);
+
+}  // namespace cosim::fluid

@@ -1,0 +1,533 @@
+// The finite-volume DEM solver, templated on dimension, phase count and same-phase flux.
+// One time step (SSP-RK2 or RK3), per stage:
+//   1. primitives of the interior cells, with the admissibility check;
+//   2. ghost cells from the boundary conditions (on primitives);
+//   3. residual: for each direction, face rows of MUSCL-reconstructed states -> DEM face
+//      contributions -> applied to the two neighbouring cell rows;
+//   4. Runge-Kutta combination, then instantaneous relaxation (two phases).
+// Finite-rate exchange (drag, heat) is applied once per step after the hyperbolic step.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "fluid_solver/core/boundary.h"
+#include "fluid_solver/core/dem_face.h"
+#include "fluid_solver/core/grid.h"
+#include "fluid_solver/core/initial_state.h"
+#include "fluid_solver/core/layout.h"
+#include "fluid_solver/core/reconstruction.h"
+#include "fluid_solver/core/simulation.h"
+#include "fluid_solver/physics/relaxation.h"
+
+namespace cosim::fluid {
+
+enum class ReconMode { First, Minmod, VanLeer, MC };
+
+template <int DIM, int NP, FluxKind FK>
+class Solver final : public FluidSimulation {
+  using Lay = Layout<DIM, NP>;
+  static constexpr int kFaceVars = NP * (2 + DIM) + (NP > 1 ? 6 : 0);
+
+ public:
+  explicit Solver(const FluidScene& scene) : scene_(scene), g_(scene.cells, scene.lower, scene.upper) {
+    for (int k = 0; k < NP; ++k) eos_[k] = scene.phases[k].eos;
+    U_.resize(Lay::kCons, g_.total);
+    U0_.resize(Lay::kCons, g_.total);
+    R_.resize(Lay::kCons, g_.total);
+    W_.resize(Lay::kPrim, g_.total);
+    if (scene.threads > 0) omp_set_num_threads(scene.threads);
+    buffers_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    for (auto& b : buffers_) b.assign(static_cast<std::size_t>(kFaceVars) * (g_.n[0] + 1), 0.0);
+    if (scene.reconstruction == Reconstruction::FirstOrder) mode_ = ReconMode::First;
+    else if (scene.limiter == Limiter::Minmod) mode_ = ReconMode::Minmod;
+    else if (scene.limiter == Limiter::VanLeer) mode_ = ReconMode::VanLeer;
+    else mode_ = ReconMode::MC;
+    bc_ = BoundaryFiller<DIM, NP>(scene, g_, eos_);
+    set_initial_state<DIM, NP>(scene, g_, eos_, U_);
+  }
+
+  const FluidScene& scene() const override { return scene_; }
+  double time() const override { return t_; }
+  long steps() const override { return steps_; }
+  std::size_t interior_cells() const override { return g_.interior_count(); }
+  std::size_t state_bytes() const override {
+    std::size_t b = (U_.data.size() + U0_.data.size() + R_.data.size() + W_.data.size()) * sizeof(double);
+    for (const auto& buf : buffers_) b += buf.size() * sizeof(double);
+    return b;
+  }
+
+  double stable_dt() override {
+    compute_primitives(U_);
+    double smax = 0.0;
+    const double* Wp[Lay::kPrim];
+    for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
+    for_each_row([&](std::size_t base, int len, double& acc) {
+      for (int i = 0; i < len; ++i) {
+        const std::size_t c = base + i;
+        for (int k = 0; k < NP; ++k) {
+          double s = 0;
+          for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + Wp[Lay::sound(k)][c]) / g_.dx[d];
+          acc = std::max(acc, s);
+        }
+      }
+    }, smax);
+    return scene_.cfl / smax;
+  }
+
+  void advance(double dt) override {
+    U0_.data = U_.data;
+    if (scene_.integrator == TimeIntegrator::RK2) {
+      stage(dt, 0.0, 1.0);
+      stage(dt, 0.5, 0.5);
+    } else {
+      stage(dt, 0.0, 1.0);
+      stage(dt, 0.75, 0.25);
+      stage(dt, 1.0 / 3.0, 2.0 / 3.0);
+    }
+    if constexpr (NP == 2) exchange_sources(dt);
+    t_ += dt;
+    ++steps_;
+    primitives_valid_ = false;
+  }
+
+  PhaseFields phase_fields(int k) const override {
+    PhaseFields f;
+    const std::size_t n = g_.interior_count();
+    f.alpha.resize(n);
+    f.rho.resize(n);
+    f.velocity.assign(3 * n, 0.0);
+    f.p.resize(n);
+    f.T.resize(n);
+    std::size_t o = 0;
+    for (int kk = 0; kk < g_.n[2]; ++kk)
+      for (int j = 0; j < g_.n[1]; ++j)
+        for (int i = 0; i < g_.n[0]; ++i, ++o) {
+          const std::size_t c = g_.index(i, j, kk);
+          double a = 1.0;
+          if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
+          const double m = U_.var(Lay::mass(k))[c];
+          const double rho = m / a;
+          double q = 0;
+          for (int d = 0; d < DIM; ++d) {
+            f.velocity[3 * o + d] = U_.var(Lay::mom(k, d))[c] / m;
+            q += f.velocity[3 * o + d] * f.velocity[3 * o + d];
+          }
+          const double rhoe = U_.var(Lay::energy(k))[c] / a - 0.5 * rho * q;
+          f.alpha[o] = a;
+          f.rho[o] = rho;
+          f.p[o] = eos_[k].pressure(rho, rhoe / rho);
+          f.T[o] = eos_[k].temperature(rho, f.p[o]);
+        }
+    return f;
+  }
+
+  std::vector<PhaseTotals> totals() const override {
+    std::vector<PhaseTotals> out(NP);
+    const double vol = g_.cell_volume();
+    for (int k = 0; k < NP; ++k) {
+      for (int kk = 0; kk < g_.n[2]; ++kk)
+        for (int j = 0; j < g_.n[1]; ++j)
+          for (int i = 0; i < g_.n[0]; ++i) {
+            const std::size_t c = g_.index(i, j, kk);
+            out[k].mass += U_.var(Lay::mass(k))[c];
+            for (int d = 0; d < DIM; ++d) out[k].momentum[d] += U_.var(Lay::mom(k, d))[c];
+            out[k].energy += U_.var(Lay::energy(k))[c];
+          }
+      out[k].mass *= vol;
+      for (auto& m : out[k].momentum) m *= vol;
+      out[k].energy *= vol;
+    }
+    return out;
+  }
+
+ private:
+  // Calls f(base, len, acc) for every interior x-row in parallel; acc is max-reduced into result.
+  template <class F>
+  void for_each_row(F&& f, double& result) {
+    const int rows = g_.n[1] * g_.n[2];
+    double r = result;
+#pragma omp parallel for schedule(static) reduction(max : r)
+    for (int row = 0; row < rows; ++row) {
+      const int j = row % g_.n[1], k = row / g_.n[1];
+      f(g_.index(0, j, k), g_.n[0], r);
+    }
+    result = r;
+  }
+
+  // Interior primitives from conservative U; throws StateError naming the first bad cell.
+  void compute_primitives(const FieldArray& U) {
+    if (primitives_valid_ && &U == &U_) return;
+    double bad = 0.0;
+    const double* Uc[Lay::kCons];
+    double* Wp[Lay::kPrim];
+    for (int v = 0; v < Lay::kCons; ++v) Uc[v] = U.var(v);
+    for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
+    for_each_row([&](std::size_t base, int len, double& acc) {
+      for (int i = 0; i < len; ++i) {
+        const std::size_t c = base + i;
+        double a0 = 1.0;
+        if constexpr (NP == 2) {
+          a0 = Uc[Lay::alpha][c];
+          Wp[Lay::palpha][c] = a0;
+          if (!(a0 > 0.0 && a0 < 1.0)) acc = 1.0;
+        }
+        for (int k = 0; k < NP; ++k) {
+          const double a = k == 0 ? a0 : 1.0 - a0;
+          const double m = Uc[Lay::mass(k)][c];
+          const double rho = m / a;
+          const double inv = 1.0 / m;
+          double q = 0;
+          for (int d = 0; d < DIM; ++d) {
+            const double u = Uc[Lay::mom(k, d)][c] * inv;
+            Wp[Lay::vel(k, d)][c] = u;
+            q += u * u;
+          }
+          const double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+          const auto& e = eos_[k];
+          const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
+          const double c2 = e.gamma * (p + e.pinf) / rho;
+          Wp[Lay::rho(k)][c] = rho;
+          Wp[Lay::pres(k)][c] = p;
+          Wp[Lay::sound(k)][c] = std::sqrt(c2);
+          if (!(rho > 0.0 && c2 > 0.0 && std::isfinite(c2))) acc = 1.0;
+        }
+      }
+    }, bad);
+    if (bad > 0.0) report_bad_cell(U);
+    if (&U == &U_) primitives_valid_ = true;
+  }
+
+  [[noreturn]] void report_bad_cell(const FieldArray& U) const {
+    for (int kk = 0; kk < g_.n[2]; ++kk)
+      for (int j = 0; j < g_.n[1]; ++j)
+        for (int i = 0; i < g_.n[0]; ++i) {
+          const std::size_t c = g_.index(i, j, kk);
+          const double a0 = NP == 2 ? U.var(Lay::alpha)[c] : 1.0;
+          std::string msg;
+          bool bad = NP == 2 && !(a0 > 0.0 && a0 < 1.0);
+          for (int k = 0; k < NP; ++k) {
+            const double rho = W_.var(Lay::rho(k))[c], p = W_.var(Lay::pres(k))[c];
+            const double cs = W_.var(Lay::sound(k))[c];
+            if (!(rho > 0.0 && cs > 0.0 && std::isfinite(cs))) bad = true;
+            msg += fmt::format(" phase '{}': alpha={:.6g} rho={:.6g} p={:.6g} (p+pinf must be > 0, pinf={:.6g});",
+                               scene_.phases[k].name, k == 0 ? a0 : 1.0 - a0, rho, p, eos_[k].pinf);
+          }
+          if (!bad) continue;
+          std::string where = fmt::format("cell (i={}", i);
+          if (DIM > 1) where += fmt::format(", j={}", j);
+          if (DIM > 2) where += fmt::format(", k={}", kk);
+          where += fmt::format(") at x=({:.6g}", g_.center(0, i));
+          if (DIM > 1) where += fmt::format(", {:.6g}", g_.center(1, j));
+          if (DIM > 2) where += fmt::format(", {:.6g}", g_.center(2, kk));
+          throw StateError(fmt::format("inadmissible state in {}) at t={:.9g} (step {}):{}", where, t_, steps_ + 1, msg));
+        }
+    throw StateError(fmt::format("inadmissible state at t={:.9g} (step {})", t_, steps_ + 1));
+  }
+
+  void stage(double dt, double a, double b) {
+    compute_primitives(U_);
+    primitives_valid_ = false;
+    bc_.fill(W_);
+    residual();
+    double* Uv[Lay::kCons];
+    const double* U0v[Lay::kCons];
+    const double* Rv[Lay::kCons];
+    for (int v = 0; v < Lay::kCons; ++v) {
+      Uv[v] = U_.var(v);
+      U0v[v] = U0_.var(v);
+      Rv[v] = R_.var(v);
+    }
+    double dummy = 0;
+    for_each_row([&](std::size_t base, int len, double&) {
+      for (int v = 0; v < Lay::kCons; ++v) {
+        double* u = Uv[v] + base;
+        const double* u0 = U0v[v] + base;
+        const double* r = Rv[v] + base;
+        if (a == 0.0)
+          for (int i = 0; i < len; ++i) u[i] += dt * r[i];
+        else
+          for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+      }
+      if constexpr (NP == 2) relax_row(base, len);
+    }, dummy);
+  }
+
+  void relax_row(std::size_t base, int len) {
+    const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
+    const bool prelax = scene_.exchange.pressure_relaxation;
+    const double amin = scene_.exchange.alpha_min;
+    for (int i = 0; i < len; ++i) {
+      const std::size_t c = base + i;
+      CellState2 s = load_cell(c);
+      s.alpha0 = std::clamp(s.alpha0, amin, 1.0 - amin);
+      if (vrelax) relax_velocity(s, DIM);
+      if (prelax) relax_pressure(s, eos_, DIM);
+      store_cell(c, s);
+    }
+  }
+
+  void exchange_sources(double dt) {
+    const auto& ex = scene_.exchange;
+    const bool drag = ex.velocity == VelocityRelaxation::Drag;
+    if (!drag && !ex.heat_transfer) return;
+    double dummy = 0;
+    for_each_row([&](std::size_t base, int len, double&) {
+      for (int i = 0; i < len; ++i) {
+        CellState2 s = load_cell(base + i);
+        if (drag) apply_drag(s, eos_, ex, DIM, dt);
+        if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
+        if (ex.pressure_relaxation) relax_pressure(s, eos_, DIM);
+        store_cell(base + i, s);
+      }
+    }, dummy);
+  }
+
+  CellState2 load_cell(std::size_t c) const {
+    CellState2 s{};
+    if constexpr (NP == 2) s.alpha0 = U_.var(Lay::alpha)[c];
+    for (int k = 0; k < NP; ++k) {
+      s.m[k] = U_.var(Lay::mass(k))[c];
+      for (int d = 0; d < DIM; ++d) s.mom[k][d] = U_.var(Lay::mom(k, d))[c];
+      s.E[k] = U_.var(Lay::energy(k))[c];
+    }
+    return s;
+  }
+  void store_cell(std::size_t c, const CellState2& s) {
+    if constexpr (NP == 2) U_.var(Lay::alpha)[c] = s.alpha0;
+    for (int k = 0; k < NP; ++k) {
+      U_.var(Lay::mass(k))[c] = s.m[k];
+      for (int d = 0; d < DIM; ++d) U_.var(Lay::mom(k, d))[c] = s.mom[k][d];
+      U_.var(Lay::energy(k))[c] = s.E[k];
+    }
+  }
+
+  void residual() {
+    double dummy = 0;
+    for_each_row([&](std::size_t base, int len, double&) {
+      for (int v = 0; v < Lay::kCons; ++v) std::fill_n(R_.var(v) + base, len, 0.0);
+    }, dummy);
+    sweep<0>();
+    if constexpr (DIM > 1) sweep<1>();
+    if constexpr (DIM > 2) sweep<2>();
+  }
+
+  template <int D>
+  void sweep() {
+    switch (mode_) {
+      case ReconMode::First: sweep_impl<D, ReconMode::First>(); break;
+      case ReconMode::Minmod: sweep_impl<D, ReconMode::Minmod>(); break;
+      case ReconMode::VanLeer: sweep_impl<D, ReconMode::VanLeer>(); break;
+      case ReconMode::MC: sweep_impl<D, ReconMode::MC>(); break;
+    }
+  }
+
+  // Face-row buffer layout: per phase (mass, mom[DIM], energy) fluxes, then for NP = 2 the
+  // phase-0 Lagrangian parts into the left cell (3) and into the right cell (3).
+  static constexpr int fvar_flux(int k, int q) { return k * (2 + DIM) + q; }
+  static constexpr int fvar_lag_left = NP * (2 + DIM);
+  static constexpr int fvar_lag_right = NP * (2 + DIM) + 3;
+
+  template <int D, ReconMode RM>
+  void sweep_impl() {
+    const double inv_dx = 1.0 / g_.dx[D];
+    const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
+    const int n0 = g_.n[0];
+    const std::size_t flen = static_cast<std::size_t>(n0 + 1);
+    if constexpr (D == 0) {
+      const int rows = g_.n[1] * g_.n[2];
+#pragma omp parallel for schedule(static)
+      for (int row = 0; row < rows; ++row) {
+        double* buf = buffers_[static_cast<std::size_t>(omp_get_thread_num())].data();
+        const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
+        compute_faces<D, RM>(base, n0 + 1, buf, flen);
+        apply_right<D>(buf, flen, base, 0, n0, inv_dx);
+        apply_left<D>(buf, flen, base - 1, 1, n0 + 1, inv_dx);
+      }
+    } else {
+      const int nD = g_.n[D];
+      const int others = D == 1 ? g_.n[2] : g_.n[1];
+      const int chunks = std::max(1, std::min(nD, 4 * omp_get_max_threads()));
+      const int tasks = others * chunks;
+#pragma omp parallel for schedule(static)
+      for (int t = 0; t < tasks; ++t) {
+        double* buf = buffers_[static_cast<std::size_t>(omp_get_thread_num())].data();
+        const int o = t / chunks, ch = t % chunks;
+        const int a = static_cast<int>(static_cast<long>(ch) * nD / chunks);
+        const int b = static_cast<int>(static_cast<long>(ch + 1) * nD / chunks);
+        for (int layer = a; layer <= b; ++layer) {
+          const std::size_t base = D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer);
+          compute_faces<D, RM>(base, n0, buf, flen);
+          if (layer < b) apply_right<D>(buf, flen, base, 0, n0, inv_dx);
+          if (layer > a) apply_left<D>(buf, flen, base - s, 0, n0, inv_dx);
+        }
+      }
+    }
+  }
+
+  // Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f.
+  template <int D>
+  void apply_right(const double* buf, std::size_t flen, std::size_t rbase, int f0, int f1, double inv_dx) {
+    for (int k = 0; k < NP; ++k)
+      for (int q = 0; q < 2 + DIM; ++q) {
+        double* r = R_.var(Lay::mass(k) + q) + rbase;
+        const double* F = buf + fvar_flux(k, q) * flen;
+        for (int f = f0; f < f1; ++f) r[f] += inv_dx * F[f];
+      }
+    if constexpr (NP == 2) apply_lagrangian<D>(buf + fvar_lag_right * flen, flen, rbase, f0, f1, inv_dx);
+  }
+  // Faces f in [f0, f1) subtract F and add Lag_left to cell lbase + f.
+  template <int D>
+  void apply_left(const double* buf, std::size_t flen, std::size_t lbase, int f0, int f1, double inv_dx) {
+    for (int k = 0; k < NP; ++k)
+      for (int q = 0; q < 2 + DIM; ++q) {
+        double* r = R_.var(Lay::mass(k) + q) + lbase;
+        const double* F = buf + fvar_flux(k, q) * flen;
+        for (int f = f0; f < f1; ++f) r[f] -= inv_dx * F[f];
+      }
+    if constexpr (NP == 2) apply_lagrangian<D>(buf + fvar_lag_left * flen, flen, lbase, f0, f1, inv_dx);
+  }
+  // Phase 0 gets +Lag, phase 1 gets -Lag (its [X_k] is opposite); momentum along the face normal.
+  template <int D>
+  void apply_lagrangian(const double* lag, std::size_t flen, std::size_t base, int f0, int f1, double inv_dx) {
+    double* ra = R_.var(Lay::alpha) + base;
+    double* rm0 = R_.var(Lay::mom(0, D)) + base;
+    double* rm1 = R_.var(Lay::mom(NP - 1, D)) + base;
+    double* re0 = R_.var(Lay::energy(0)) + base;
+    double* re1 = R_.var(Lay::energy(NP - 1)) + base;
+    const double* la = lag;
+    const double* lm = lag + flen;
+    const double* le = lag + 2 * flen;
+    for (int f = f0; f < f1; ++f) {
+      ra[f] += inv_dx * la[f];
+      rm0[f] += inv_dx * lm[f];
+      rm1[f] -= inv_dx * lm[f];
+      re0[f] += inv_dx * le[f];
+      re1[f] -= inv_dx * le[f];
+    }
+  }
+
+  PhaseState<DIM> load_state(int k, std::size_t c) const {
+    PhaseState<DIM> s;
+    s.rho = W_.var(Lay::rho(k))[c];
+    for (int d = 0; d < DIM; ++d) s.u[d] = W_.var(Lay::vel(k, d))[c];
+    s.p = W_.var(Lay::pres(k))[c];
+    s.c = W_.var(Lay::sound(k))[c];
+    return s;
+  }
+
+  template <ReconMode RM>
+  static double slope(double wm, double w0, double wp) {
+    if constexpr (RM == ReconMode::Minmod) return limited_slope<Limiter::Minmod>(w0 - wm, wp - w0);
+    else if constexpr (RM == ReconMode::VanLeer) return limited_slope<Limiter::VanLeer>(w0 - wm, wp - w0);
+    else return limited_slope<Limiter::MC>(w0 - wm, wp - w0);
+  }
+
+  // Reconstructed edge states of cell c along D: lo = left edge, hi = right edge.
+  template <int D, ReconMode RM>
+  void edges(int k, std::size_t c, std::size_t s, PhaseState<DIM>& lo, PhaseState<DIM>& hi) const {
+    const double* r = W_.var(Lay::rho(k));
+    const double* p = W_.var(Lay::pres(k));
+    double dr = slope<RM>(r[c - s], r[c], r[c + s]);
+    double dp = slope<RM>(p[c - s], p[c], p[c + s]);
+    lo.rho = r[c] - 0.5 * dr;
+    hi.rho = r[c] + 0.5 * dr;
+    lo.p = p[c] - 0.5 * dp;
+    hi.p = p[c] + 0.5 * dp;
+    for (int d = 0; d < DIM; ++d) {
+      const double* u = W_.var(Lay::vel(k, d));
+      const double du = slope<RM>(u[c - s], u[c], u[c + s]);
+      lo.u[d] = u[c] - 0.5 * du;
+      hi.u[d] = u[c] + 0.5 * du;
+    }
+    lo.c = eos_[k].sound_speed(lo.rho, lo.p);
+    hi.c = eos_[k].sound_speed(hi.rho, hi.p);
+  }
+
+  template <int D, ReconMode RM>
+  void compute_faces(std::size_t base, int len, double* buf, std::size_t flen) {
+    const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
+    const bool lowmach = scene_.low_mach;
+    const double cutoff = scene_.low_mach_cutoff;
+    for (int f = 0; f < len; ++f) {
+      const std::size_t cr = base + f, cl = cr - s;
+      PhaseState<DIM> L[NP], R[NP], Rhi[NP];
+      double aL = 1.0, aR = 1.0, aRhi = 1.0;
+      if constexpr (RM == ReconMode::First) {
+        for (int k = 0; k < NP; ++k) {
+          L[k] = load_state(k, cl);
+          R[k] = load_state(k, cr);
+        }
+        if constexpr (NP == 2) {
+          aL = W_.var(Lay::palpha)[cl];
+          aR = W_.var(Lay::palpha)[cr];
+        }
+      } else {
+        PhaseState<DIM> Llo;
+        for (int k = 0; k < NP; ++k) {
+          edges<D, RM>(k, cl, s, Llo, L[k]);
+          edges<D, RM>(k, cr, s, R[k], Rhi[k]);
+        }
+        if constexpr (NP == 2) {
+          const double* al = W_.var(Lay::palpha);
+          const double dal = slope<RM>(al[cl - s], al[cl], al[cr]);
+          const double dar = slope<RM>(al[cl], al[cr], al[cr + s]);
+          aL = al[cl] + 0.5 * dal;
+          aR = al[cr] - 0.5 * dar;
+          aRhi = al[cr] + 0.5 * dar;
+        }
+      }
+      FaceResult<DIM, NP> res;
+      if (lowmach) {
+        PhaseState<DIM> sL[NP], sR[NP];
+        for (int k = 0; k < NP; ++k) {
+          sL[k] = L[k];
+          sR[k] = R[k];
+          const double amin = k == 0 ? std::min(aL, aR) : std::min(1.0 - aL, 1.0 - aR);
+          if (amin > 1e-6) low_mach_correction<DIM>(sL[k].u, sL[k].c, sR[k].u, sR[k].c, cutoff);
+        }
+        dem_face<FK, DIM, NP, D>(L, R, sL, sR, aL, aR, eos_, res);
+      } else {
+        dem_face<FK, DIM, NP, D>(L, R, L, R, aL, aR, eos_, res);
+      }
+      for (int k = 0; k < NP; ++k) {
+        buf[fvar_flux(k, 0) * flen + f] = res.flux[k].mass;
+        for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] = res.flux[k].mom[d];
+        buf[fvar_flux(k, 1 + DIM) * flen + f] = res.flux[k].energy;
+      }
+      if constexpr (NP == 2) {
+        Lagrangian right = res.to_right;
+        if constexpr (RM != ReconMode::First) {
+          if (aR != aRhi) {  // second-order DEM: contacts inside cell cr (numerics.md 2.6)
+            const Lagrangian in = intra_cell_term<DIM, D>(R, aR, Rhi, aRhi, eos_);
+            right.alpha += in.alpha;
+            right.mom += in.mom;
+            right.energy += in.energy;
+          }
+        }
+        buf[(fvar_lag_left + 0) * flen + f] = res.to_left.alpha;
+        buf[(fvar_lag_left + 1) * flen + f] = res.to_left.mom;
+        buf[(fvar_lag_left + 2) * flen + f] = res.to_left.energy;
+        buf[(fvar_lag_right + 0) * flen + f] = right.alpha;
+        buf[(fvar_lag_right + 1) * flen + f] = right.mom;
+        buf[(fvar_lag_right + 2) * flen + f] = right.energy;
+      }
+    }
+  }
+
+  FluidScene scene_;
+  Grid<DIM> g_;
+  eos::StiffenedGas eos_[NP];
+  FieldArray U_, U0_, R_, W_;
+  std::vector<std::vector<double>> buffers_;
+  BoundaryFiller<DIM, NP> bc_;
+  ReconMode mode_ = ReconMode::VanLeer;
+  double t_ = 0.0;
+  long steps_ = 0;
+  bool primitives_valid_ = false;
+};
+
+}  // namespace cosim::fluid

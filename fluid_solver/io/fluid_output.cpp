@@ -1,0 +1,55 @@
+#include "fluid_solver/io/fluid_output.h"
+
+namespace cosim::fluid {
+
+void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
+  const FluidScene& s = sim.scene();
+  const int np = s.num_phases();
+  std::vector<PhaseFields> ph;
+  for (int k = 0; k < np; ++k) ph.push_back(sim.phase_fields(k));
+  std::vector<io::FieldView> views;
+  for (int k = 0; k < np; ++k) {
+    const std::string& n = s.phases[k].name;
+    if (np > 1) views.push_back({n + "_alpha", ph[k].alpha.data(), 1, io::Center::Cell});
+    views.push_back({n + "_density", ph[k].rho.data(), 1, io::Center::Cell});
+    views.push_back({n + "_velocity", ph[k].velocity.data(), 3, io::Center::Cell});
+    views.push_back({n + "_pressure", ph[k].p.data(), 1, io::Center::Cell});
+    views.push_back({n + "_temperature", ph[k].T.data(), 1, io::Center::Cell});
+  }
+  std::vector<double> mrho, mvel, mp;
+  if (np > 1) {
+    const std::size_t n = ph[0].rho.size();
+    mrho.assign(n, 0.0);
+    mvel.assign(3 * n, 0.0);
+    mp.assign(n, 0.0);
+    for (std::size_t c = 0; c < n; ++c) {
+      for (int k = 0; k < np; ++k) {
+        const double m = ph[k].alpha[c] * ph[k].rho[c];
+        mrho[c] += m;
+        for (int d = 0; d < 3; ++d) mvel[3 * c + d] += m * ph[k].velocity[3 * c + d];
+        mp[c] += ph[k].alpha[c] * ph[k].p[c];
+      }
+      for (int d = 0; d < 3; ++d) mvel[3 * c + d] /= mrho[c];
+    }
+    views.push_back({"mixture_density", mrho.data(), 1, io::Center::Cell});
+    views.push_back({"mixture_velocity", mvel.data(), 3, io::Center::Cell});
+    views.push_back({"mixture_pressure", mp.data(), 1, io::Center::Cell});
+  }
+  io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
+  for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+  series.write(sim.time(), sim.steps(), g, views);
+}
+
+nlohmann::json totals_json(const FluidScene& scene, const std::vector<PhaseTotals>& totals) {
+  nlohmann::json arr = nlohmann::json::array();
+  for (std::size_t k = 0; k < totals.size(); ++k) {
+    const auto& t = totals[k];
+    arr.push_back({{"phase", scene.phases[k].name},
+                   {"mass", t.mass},
+                   {"momentum", {t.momentum[0], t.momentum[1], t.momentum[2]}},
+                   {"energy", t.energy}});
+  }
+  return arr;
+}
+
+}  // namespace cosim::fluid
