@@ -1,0 +1,67 @@
+#pragma once
+// Thin RAII wrapper over the HDF5 C API: just what snapshot output (and its tests) need.
+//
+// Every failure throws std::runtime_error naming the file and the object, with HDF5's own most specific
+// message appended. HDF5's automatic error printing to stderr is switched off. Not thread-safe (neither is
+// Debian's serial HDF5 build).
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cosim::io {
+
+// Dataset shape, slowest-varying dimension first (C / HDF5 order).
+using Hdf5Shape = std::vector<std::uint64_t>;
+
+class Hdf5File {
+ public:
+  enum class Mode { Create, ReadOnly };  // Create truncates an existing file
+
+  Hdf5File(std::filesystem::path path, Mode mode);
+  ~Hdf5File();  // closes silently; call close() to see errors
+  Hdf5File(Hdf5File&& other) noexcept;
+  Hdf5File& operator=(Hdf5File&& other) noexcept;
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  bool is_open() const { return id_ >= 0; }
+  void close();
+
+  // Object names are paths from the root, e.g. "/cell/density"; parent groups must exist.
+  void create_group(const std::string& name);
+  bool exists(const std::string& name) const;
+
+  // 1-D data written as a dataset of `shape`; the product of `shape` must equal data.size().
+  void write_dataset(const std::string& name, std::span<const double> data, const Hdf5Shape& shape);
+  void write_dataset(const std::string& name, std::span<const std::int64_t> data, const Hdf5Shape& shape);
+
+  Hdf5Shape dataset_shape(const std::string& name) const;
+  std::vector<double> read_doubles(const std::string& name) const;      // flattened, row-major
+  std::vector<std::int64_t> read_int64s(const std::string& name) const;  // flattened, row-major
+
+  // Attributes on an existing object ("/" is the root). Scalars get a scalar dataspace, spans a 1-D one.
+  // An existing attribute of the same name is replaced.
+  void write_attribute(const std::string& object, const std::string& name, double value);
+  void write_attribute(const std::string& object, const std::string& name, std::int64_t value);
+  void write_attribute(const std::string& object, const std::string& name, std::span<const double> values);
+  void write_attribute(const std::string& object, const std::string& name,
+                       std::span<const std::int64_t> values);
+  void write_attribute(const std::string& object, const std::string& name, std::string_view value);
+
+  std::vector<double> read_double_attribute(const std::string& object, const std::string& name) const;
+  std::vector<std::int64_t> read_int64_attribute(const std::string& object, const std::string& name) const;
+  std::string read_string_attribute(const std::string& object, const std::string& name) const;
+
+ private:
+  std::int64_t checked_id(const char* action) const;
+
+  std::filesystem::path path_;
+  std::int64_t id_ = -1;  // hid_t of the open file, -1 when closed
+};
+
+}  // namespace cosim::io
