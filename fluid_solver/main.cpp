@@ -1,5 +1,6 @@
 // fluid_solver SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N]
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "fluid_solver/app/runner.h"
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet,-q", opt.quiet, "no progress line");
   app.add_option("--threads", opt.threads, "OpenMP threads (default: scene value or all cores)");
   CLI11_PARSE(app, argc, argv);
+  spdlog::set_default_logger(spdlog::stderr_color_mt("fluid_solver"));  // stdout stays free for data
   spdlog::set_pattern("[fluid_solver] %^%l%$: %v");
   if (opt.quiet) spdlog::set_level(spdlog::level::warn);
   return cosim::fluid::run_fluid(opt);

@@ -351,12 +351,14 @@ FluidScene read_fluid_scene(Node& root) {
 
 namespace {
 FluidScene read_document(Node root) {
-  FluidScene s = read_fluid_scene(root);
-  s.name = root.get<std::string>("name", "scene");
+  // Top-level keys first, so that a typo in a section name gets a suggestion. Sections that
+  // belong to the other processes of a coupled scene are read by them.
+  for (const char* key : {"fluid", "solid", "coupling", "launcher"}) root.skip(key);
+  const std::string name = root.get<std::string>("name", "scene");
   root.get<std::string>("description", "");
-  // Sections that belong to the other processes of a coupled scene are read by them.
-  for (const char* other : {"solid", "coupling", "launcher"}) root.skip(other);
   root.finish();
+  FluidScene s = read_fluid_scene(root);
+  s.name = name;
   return s;
 }
 }  // namespace

@@ -1,0 +1,137 @@
+// Bad scene input: clear "file:line: key: expected ..." messages, non-zero exit, no output written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "fluid_solver/core/scene.h"
+#include "fluid_solver/core/simulation.h"
+
+namespace cosim::fluid::test {
+namespace {
+
+const char* kGood = R"(name: good
+fluid:
+  mesh: {cells: [50], lower: [0.0], upper: [1.0]}
+  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]
+  time: {end: 0.01, cfl: 0.4}
+  initial:
+    state: {rho: 1.0, velocity: [0.0], p: 1.0}
+)";
+
+std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
+  try {
+    parse_fluid_scene(text, sets);
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  s.replace(s.find(from), from.size(), to);
+  return s;
+}
+
+TEST(SceneValidation, GoodSceneParses) { EXPECT_EQ(error_of(kGood), ""); }
+
+TEST(SceneValidation, TypoSuggestsClosestKey) {
+  std::string e = error_of(replace(kGood, "cfl: 0.4", "clf: 0.4"));
+  EXPECT_NE(e.find("<scene>:5: fluid.time.clf: unknown key (did you mean 'cfl'?)"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, NegativeCflIsRejected) {
+  std::string e = error_of(replace(kGood, "cfl: 0.4", "cfl: -0.4"));
+  EXPECT_NE(e.find("<scene>:5: fluid.time.cfl: expected a number in (0, 1], got '-0.4'"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, WrongTypeMissingKeyAndBadChoice) {
+  EXPECT_NE(error_of(replace(kGood, "end: 0.01", "end: soon")).find("fluid.time.end: expected a number, got 'soon'"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(kGood, "end: 0.01, ", "")).find("fluid.time.end: expected a value (a number), but the key is missing"),
+            std::string::npos);
+  std::string e = error_of(kGood, {"fluid.numerics.flux=aufz"});
+  EXPECT_NE(e.find("--set fluid.numerics.flux: fluid.numerics.flux: expected one of aufs | hllc | rusanov (did you mean 'aufs'?)"),
+            std::string::npos) << e;
+  EXPECT_NE(error_of(replace(kGood, "cells: [50]", "cells: [50, 0]")).find("fluid.mesh.cells"), std::string::npos);
+  EXPECT_NE(error_of(replace(kGood, "p: 1.0}", "p: -1.0}")).find("p + pinf > 0"), std::string::npos);
+  EXPECT_NE(error_of(replace(kGood, "fluid:", "fluidd:")).find("unknown key (did you mean 'fluid'?)"), std::string::npos);
+}
+
+TEST(SceneValidation, MalformedYamlNamesLine) {
+  std::string e = error_of(replace(kGood, "cfl: 0.4}", "cfl: 0.4"));
+  EXPECT_NE(e.find("<scene>:"), std::string::npos) << e;
+  EXPECT_NE(e.find("YAML syntax error"), std::string::npos) << e;
+}
+
+TEST(SceneValidation, OverridesApply) {
+  FluidScene s = parse_fluid_scene(kGood, {"fluid.time.cfl=0.2", "fluid.mesh.cells=[80]", "fluid.numerics.flux=hllc"});
+  EXPECT_EQ(s.cfl, 0.2);
+  EXPECT_EQ(s.cells[0], 80);
+  EXPECT_EQ(s.flux, FluxKind::HLLC);
+  EXPECT_NE(error_of(kGood, {"fluid.time.cfl"}).find("expected key.path=value"), std::string::npos);
+}
+
+// Runs the real executable; returns the exit code and fills stderr.
+int run_solver(const std::string& scene_text, const std::filesystem::path& out, std::string& err) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cosim_bad_input_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto scene = dir / "scene.yaml";
+  std::ofstream(scene) << scene_text;
+  const std::string cmd = std::string(COSIM_BINARY_DIR) + "/bin/fluid_solver " + scene.string() + " --quiet --out " +
+                          out.string() + " 2>" + (dir / "err.txt").string();
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(dir / "err.txt");
+  err.assign(std::istreambuf_iterator<char>(in), {});
+  return WEXITSTATUS(status);
+}
+
+TEST(FluidSolverExecutable, BadInputExitsNonZeroWithMessage) {
+  const auto out = std::filesystem::temp_directory_path() / ("cosim_bad_out_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(out);
+  std::string err;
+  EXPECT_EQ(run_solver(replace(kGood, "cfl: 0.4", "cfl: -1"), out, err), 2);
+  EXPECT_NE(err.find("scene.yaml:5: fluid.time.cfl: expected a number in (0, 1], got '-1'"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+  EXPECT_EQ(run_solver(replace(kGood, "cfl: 0.4", "cfll: 0.4"), out, err), 2);
+  EXPECT_NE(err.find("did you mean 'cfl'?"), std::string::npos) << err;
+  EXPECT_EQ(run_solver("fluid: [1, 2", out, err), 2);
+  EXPECT_NE(err.find("YAML syntax error"), std::string::npos) << err;
+  EXPECT_EQ(run_solver(kGood, out, err), 0) << err;
+  EXPECT_TRUE(std::filesystem::exists(out / "summary.json"));
+  EXPECT_TRUE(std::filesystem::exists(out / "fluid.xmf"));
+  std::filesystem::remove_all(out);
+}
+
+// A state that cannot stay admissible (water pulled apart at +-2 km/s cavitates: p + pinf < 0,
+// which a single-phase stiffened gas cannot represent) stops the run with a diagnostic naming the
+// cell and the time, exit code 3, and the snapshots written before stay complete.
+TEST(FluidSolverExecutable, InadmissibleStateStopsWithDiagnostic) {
+  const std::string scene = R"(name: blowup
+fluid:
+  mesh: {cells: [100], lower: [0.0], upper: [1.0]}
+  phases: [{name: water, material: water}]
+  time: {end: 1.0e-4}
+  initial:
+    state: {rho: 1000.0, velocity: [-2000.0], p: 1.0e5}
+    regions:
+      - half_space: {point: [0.5], normal: [1.0]}
+        state: {rho: 1000.0, velocity: [2000.0], p: 1.0e5}
+  output: {interval: 1.0e-6}
+)";
+  const auto out = std::filesystem::temp_directory_path() / ("cosim_blowup_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(out);
+  std::string err;
+  const int code = run_solver(scene, out, err);
+  EXPECT_EQ(code, 3) << err;
+  EXPECT_NE(err.find("inadmissible state in cell (i="), std::string::npos) << err;
+  EXPECT_NE(err.find("at t="), std::string::npos) << err;
+  EXPECT_TRUE(std::filesystem::exists(out / "fluid_000000.h5"));
+  for (const auto& f : std::filesystem::directory_iterator(out)) EXPECT_NE(f.path().extension(), ".tmp");
+  std::filesystem::remove_all(out);
+}
+
+}  // namespace
+}  // namespace cosim::fluid::test
