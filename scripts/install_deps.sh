@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages this project needs, only those that are missing.
+set -euo pipefail
+PACKAGES=(
+  g++ cmake ninja-build pkg-config
+  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libhdf5-dev libeigen3-dev nlohmann-json3-dev
+  libgtest-dev libzmq3-dev libprotobuf-dev protobuf-compiler
+  python3 python3-numpy python3-matplotlib python3-h5py
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
