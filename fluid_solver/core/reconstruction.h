@@ -10,17 +10,20 @@
 namespace cosim::fluid {
 
 // Limited slope from the backward difference a = W_i - W_{i-1} and forward difference b = W_{i+1} - W_i.
+// Written without branches so that the row loops vectorise.
 template <Limiter LIM>
 inline double limited_slope(double a, double b) {
-  if (a * b <= 0.0) return 0.0;
+  const double ab = a * b;
+  double r;
   if constexpr (LIM == Limiter::Minmod) {
-    return std::abs(a) < std::abs(b) ? a : b;
+    r = std::abs(a) < std::abs(b) ? a : b;
   } else if constexpr (LIM == Limiter::VanLeer) {
-    return 2.0 * a * b / (a + b);
+    r = 2.0 * ab / (a + b);
   } else {  // monotonized central
-    const double s = a > 0 ? 1.0 : -1.0;
-    return s * std::min({2.0 * std::abs(a), 2.0 * std::abs(b), 0.5 * std::abs(a + b)});
+    const double m = std::min(std::min(2.0 * std::abs(a), 2.0 * std::abs(b)), 0.5 * std::abs(a + b));
+    r = a > 0 ? m : -m;
   }
+  return ab > 0.0 ? r : 0.0;
 }
 
 // Paper eqs. 10-11: keep the mean of the two face velocities, scale their jump by

@@ -21,6 +21,7 @@
 #include "fluid_solver/core/layout.h"
 #include "fluid_solver/core/reconstruction.h"
 #include "fluid_solver/core/simulation.h"
+#include "fluid_solver/flux/aufs_row.h"
 #include "fluid_solver/physics/relaxation.h"
 
 namespace cosim::fluid {
@@ -40,8 +41,7 @@ class Solver final : public FluidSimulation {
     R_.resize(Lay::kCons, g_.total);
     W_.resize(Lay::kPrim, g_.total);
     if (scene.threads > 0) omp_set_num_threads(scene.threads);
-    buffers_.resize(static_cast<std::size_t>(omp_get_max_threads()));
-    for (auto& b : buffers_) b.assign(static_cast<std::size_t>(kFaceVars) * (g_.n[0] + 1), 0.0);
+    allocate_scratch();
     if (scene.reconstruction == Reconstruction::FirstOrder) mode_ = ReconMode::First;
     else if (scene.limiter == Limiter::Minmod) mode_ = ReconMode::Minmod;
     else if (scene.limiter == Limiter::VanLeer) mode_ = ReconMode::VanLeer;
@@ -56,7 +56,7 @@ class Solver final : public FluidSimulation {
   std::size_t interior_cells() const override { return g_.interior_count(); }
   std::size_t state_bytes() const override {
     std::size_t b = (U_.data.size() + U0_.data.size() + R_.data.size() + W_.data.size()) * sizeof(double);
-    for (const auto& buf : buffers_) b += buf.size() * sizeof(double);
+    for (const auto& sc : scratch_) b += sc.data.size() * sizeof(double);
     return b;
   }
 
@@ -331,6 +331,25 @@ class Solver final : public FluidSimulation {
   static constexpr int fvar_lag_left = NP * (2 + DIM);
   static constexpr int fvar_lag_right = NP * (2 + DIM) + 3;
 
+  // Per-thread scratch: the face-row buffer, then two rows of reconstructed edge states.
+  struct Scratch {
+    std::vector<double> data;
+    double* faces = nullptr;
+    double* edges[2] = {nullptr, nullptr};
+  };
+  std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
+  void allocate_scratch() {
+    const std::size_t flen = static_cast<std::size_t>(g_.n[0] + 1), elen = edge_row_len();
+    const std::size_t fsize = static_cast<std::size_t>(kFaceVars) * flen, esize = 2 * Lay::kPrim * elen;
+    scratch_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    for (auto& sc : scratch_) {
+      sc.data.assign(fsize + 2 * esize, 0.0);
+      sc.faces = sc.data.data();
+      sc.edges[0] = sc.faces + fsize;
+      sc.edges[1] = sc.edges[0] + esize;
+    }
+  }
+
   template <int D, ReconMode RM>
   void sweep_impl() {
     const double inv_dx = 1.0 / g_.dx[D];
@@ -341,11 +360,13 @@ class Solver final : public FluidSimulation {
       const int rows = g_.n[1] * g_.n[2];
 #pragma omp parallel for schedule(static)
       for (int row = 0; row < rows; ++row) {
-        double* buf = buffers_[static_cast<std::size_t>(omp_get_thread_num())].data();
+        Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
         const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
-        compute_faces<D, RM>(base, n0 + 1, buf, flen);
-        apply_right<D>(buf, flen, base, 0, n0, inv_dx);
-        apply_left<D>(buf, flen, base - 1, 1, n0 + 1, inv_dx);
+        // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
+        if constexpr (RM != ReconMode::First) compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+        compute_faces<D, RM>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
+        apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
+        apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
       }
     } else {
       const int nD = g_.n[D];
@@ -354,15 +375,21 @@ class Solver final : public FluidSimulation {
       const int tasks = others * chunks;
 #pragma omp parallel for schedule(static)
       for (int t = 0; t < tasks; ++t) {
-        double* buf = buffers_[static_cast<std::size_t>(omp_get_thread_num())].data();
+        Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
         const int o = t / chunks, ch = t % chunks;
         const int a = static_cast<int>(static_cast<long>(ch) * nD / chunks);
         const int b = static_cast<int>(static_cast<long>(ch + 1) * nD / chunks);
+        auto row_base = [&](int layer) { return D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer); };
+        // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer.
+        int prev = 0;
+        if constexpr (RM != ReconMode::First) compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
         for (int layer = a; layer <= b; ++layer) {
-          const std::size_t base = D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer);
-          compute_faces<D, RM>(base, n0, buf, flen);
-          if (layer < b) apply_right<D>(buf, flen, base, 0, n0, inv_dx);
-          if (layer > a) apply_left<D>(buf, flen, base - s, 0, n0, inv_dx);
+          const std::size_t base = row_base(layer);
+          if constexpr (RM != ReconMode::First) compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+          compute_faces<D, RM>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
+          if (layer < b) apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
+          if (layer > a) apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
+          prev = 1 - prev;
         }
       }
     }
@@ -426,37 +453,85 @@ class Solver final : public FluidSimulation {
     else return limited_slope<Limiter::MC>(w0 - wm, wp - w0);
   }
 
-  // Reconstructed edge states of cell c along D: lo = left edge, hi = right edge.
+  // Limited MUSCL edge states of `count` consecutive cells starting at `first` along direction D.
+  // Edge buffer layout: for every primitive variable v, lo[v][e] at e + v * len and hi at
+  // e + (kPrim + v) * len, len = edge_row_len(). Every cell's slopes are computed once per sweep.
   template <int D, ReconMode RM>
-  void edges(int k, std::size_t c, std::size_t s, PhaseState<DIM>& lo, PhaseState<DIM>& hi) const {
-    const double* r = W_.var(Lay::rho(k));
-    const double* p = W_.var(Lay::pres(k));
-    double dr = slope<RM>(r[c - s], r[c], r[c + s]);
-    double dp = slope<RM>(p[c - s], p[c], p[c + s]);
-    lo.rho = r[c] - 0.5 * dr;
-    hi.rho = r[c] + 0.5 * dr;
-    lo.p = p[c] - 0.5 * dp;
-    hi.p = p[c] + 0.5 * dp;
-    for (int d = 0; d < DIM; ++d) {
-      const double* u = W_.var(Lay::vel(k, d));
-      const double du = slope<RM>(u[c - s], u[c], u[c + s]);
-      lo.u[d] = u[c] - 0.5 * du;
-      hi.u[d] = u[c] + 0.5 * du;
+  void compute_edges(std::size_t first, int count, double* edges) const {
+    const std::size_t s = static_cast<std::size_t>(g_.stride[D]), len = edge_row_len();
+    for (int v = 0; v < Lay::kPrim; ++v) {
+      bool is_sound = false;
+      for (int k = 0; k < NP; ++k) is_sound = is_sound || v == Lay::sound(k);
+      if (is_sound) continue;
+      const double* w = W_.var(v) + first;
+      double* lo = edges + v * len;
+      double* hi = edges + (Lay::kPrim + v) * len;
+      for (int e = 0; e < count; ++e) {
+        const double half = 0.5 * slope<RM>(w[e - s], w[e], w[e + s]);
+        lo[e] = w[e] - half;
+        hi[e] = w[e] + half;
+      }
     }
-    lo.c = eos_[k].sound_speed(lo.rho, lo.p);
-    hi.c = eos_[k].sound_speed(hi.rho, hi.p);
+    for (int k = 0; k < NP; ++k)
+      for (int side = 0; side < 2; ++side) {
+        const std::size_t off = side * Lay::kPrim * len;
+        const double* r = edges + off + Lay::rho(k) * len;
+        const double* p = edges + off + Lay::pres(k) * len;
+        double* c = edges + off + Lay::sound(k) * len;
+        const double g = eos_[k].gamma, pinf = eos_[k].pinf;
+        for (int e = 0; e < count; ++e) c[e] = std::sqrt(g * (p[e] + pinf) / r[e]);
+      }
   }
 
+  // Phase state of edge e (side 0 = lo, 1 = hi) of an edge row.
+  PhaseState<DIM> edge_state(const double* edges, int side, int k, int e) const {
+    const std::size_t len = edge_row_len();
+    const double* b = edges + side * Lay::kPrim * len + e;
+    PhaseState<DIM> st;
+    st.rho = b[Lay::rho(k) * len];
+    for (int d = 0; d < DIM; ++d) st.u[d] = b[Lay::vel(k, d) * len];
+    st.p = b[Lay::pres(k) * len];
+    st.c = b[Lay::sound(k) * len];
+    return st;
+  }
+  double edge_alpha(const double* edges, int side, int e) const {
+    return edges[(side * Lay::kPrim + Lay::palpha) * edge_row_len() + e];
+  }
+
+  // Faces f in [0, len) of a row; the face's right cell is base + f. Left states: hi edges of
+  // `left_edges` at f + left_off; right states: lo edges of `right_edges` at f + right_off.
   template <int D, ReconMode RM>
-  void compute_faces(std::size_t base, int len, double* buf, std::size_t flen) {
+  void compute_faces(std::size_t base, int len, const double* left_edges, int left_off, const double* right_edges,
+                     int right_off, double* buf, std::size_t flen) {
     const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
     const bool lowmach = scene_.low_mach;
     const double cutoff = scene_.low_mach_cutoff;
+    if constexpr (NP == 1 && FK == FluxKind::AUFS) {  // vectorised row kernel
+      const double* lv[Lay::kPrim];
+      const double* rv[Lay::kPrim];
+      double* fv[2 + DIM];
+      const std::size_t elen = edge_row_len();
+      for (int v = 0; v < Lay::kPrim; ++v) {
+        if constexpr (RM == ReconMode::First) {
+          lv[v] = W_.var(v) + base - s;
+          rv[v] = W_.var(v) + base;
+        } else {
+          lv[v] = left_edges + (Lay::kPrim + v) * elen + left_off;
+          rv[v] = right_edges + v * elen + right_off;
+        }
+      }
+      for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(0, q) * flen;
+      if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[0], cutoff);
+      else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[0], cutoff);
+      return;
+    }
     for (int f = 0; f < len; ++f) {
       const std::size_t cr = base + f, cl = cr - s;
-      PhaseState<DIM> L[NP], R[NP], Rhi[NP];
-      double aL = 1.0, aR = 1.0, aRhi = 1.0;
+      PhaseState<DIM> L[NP], R[NP];
+      double aL = 1.0, aR = 1.0;
       if constexpr (RM == ReconMode::First) {
+        (void)left_edges;
+        (void)right_edges;
         for (int k = 0; k < NP; ++k) {
           L[k] = load_state(k, cl);
           R[k] = load_state(k, cr);
@@ -466,18 +541,13 @@ class Solver final : public FluidSimulation {
           aR = W_.var(Lay::palpha)[cr];
         }
       } else {
-        PhaseState<DIM> Llo;
         for (int k = 0; k < NP; ++k) {
-          edges<D, RM>(k, cl, s, Llo, L[k]);
-          edges<D, RM>(k, cr, s, R[k], Rhi[k]);
+          L[k] = edge_state(left_edges, 1, k, f + left_off);
+          R[k] = edge_state(right_edges, 0, k, f + right_off);
         }
         if constexpr (NP == 2) {
-          const double* al = W_.var(Lay::palpha);
-          const double dal = slope<RM>(al[cl - s], al[cl], al[cr]);
-          const double dar = slope<RM>(al[cl], al[cr], al[cr + s]);
-          aL = al[cl] + 0.5 * dal;
-          aR = al[cr] - 0.5 * dar;
-          aRhi = al[cr] + 0.5 * dar;
+          aL = edge_alpha(left_edges, 1, f + left_off);
+          aR = edge_alpha(right_edges, 0, f + right_off);
         }
       }
       FaceResult<DIM, NP> res;
@@ -501,7 +571,10 @@ class Solver final : public FluidSimulation {
       if constexpr (NP == 2) {
         Lagrangian right = res.to_right;
         if constexpr (RM != ReconMode::First) {
+          const double aRhi = edge_alpha(right_edges, 1, f + right_off);
           if (aR != aRhi) {  // second-order DEM: contacts inside cell cr (numerics.md 2.6)
+            PhaseState<DIM> Rhi[NP];
+            for (int k = 0; k < NP; ++k) Rhi[k] = edge_state(right_edges, 1, k, f + right_off);
             const Lagrangian in = intra_cell_term<DIM, D>(R, aR, Rhi, aRhi, eos_);
             right.alpha += in.alpha;
             right.mom += in.mom;
@@ -522,7 +595,7 @@ class Solver final : public FluidSimulation {
   Grid<DIM> g_;
   eos::StiffenedGas eos_[NP];
   FieldArray U_, U0_, R_, W_;
-  std::vector<std::vector<double>> buffers_;
+  std::vector<Scratch> scratch_;
   BoundaryFiller<DIM, NP> bc_;
   ReconMode mode_ = ReconMode::VanLeer;
   double t_ = 0.0;
