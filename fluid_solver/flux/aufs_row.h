@@ -20,12 +20,22 @@ inline void aufs_row(int n, const double* const* left, const double* const* righ
   const double* pR = right[1 + DIM];
   const double* cL = left[2 + DIM];
   const double* cR = right[2 + DIM];
+  const double* uLp[DIM];
+  const double* uRp[DIM];
+  double* fm_out[DIM];
+  for (int d = 0; d < DIM; ++d) {
+    uLp[d] = left[1 + d];
+    uRp[d] = right[1 + d];
+    fm_out[d] = flux[1 + d];
+  }
+  double* f_mass = flux[0];
+  double* f_energy = flux[1 + DIM];
 #pragma GCC ivdep
   for (int f = 0; f < n; ++f) {
     double uL[DIM], uR[DIM];
     for (int d = 0; d < DIM; ++d) {
-      uL[d] = left[1 + d][f];
-      uR[d] = right[1 + d][f];
+      uL[d] = uLp[d][f];
+      uR[d] = uRp[d][f];
     }
     if constexpr (LOW_MACH) {  // paper eqs. 10-11
       double qL = 0, qR = 0;
@@ -60,22 +70,24 @@ inline void aufs_row(int n, const double* const* left, const double* const* righ
     const double inv_c = 1.0 / cbar;
     const double dL = (pL[f] + gpinf) * inv_c, dR = (pR[f] + gpinf) * inv_c;
     const double h0 = cbar * cbar * ig1;
-    // Upwind state (selected variable by variable).
-    const double ru = left_up ? rL[f] : rR[f];
+    // Upwind state (selected variable by variable; the density is blended arithmetically so that
+    // both loads happen unconditionally and the loop stays free of branches).
+    const double wl = left_up ? 1.0 : 0.0;
+    const double ru = wl * rL[f] + (1.0 - wl) * rR[f];
     const double pu = left_up ? pL[f] : pR[f];
     const double ku = left_up ? kL : kR;
     const double unu = left_up ? unL : unR;
     const double w = unu - s2;
     const double Eu = (pu + gpinf) * ig1 + ru * q + 0.5 * ru * ku;
     const double a = 1.0 - M;
-    flux[0][f] = a * 0.5 * (dL - dR) + M * (w * ru);
+    f_mass[f] = a * 0.5 * (dL - dR) + M * (w * ru);
     for (int d = 0; d < DIM; ++d) {
       const double uu = left_up ? uL[d] : uR[d];
       double fm = a * 0.5 * (dL * uL[d] - dR * uR[d]) + M * (w * ru * uu);
       if (d == D) fm += a * 0.5 * (pL[f] + pR[f]) + M * pu;
-      flux[1 + d][f] = fm;
+      fm_out[d][f] = fm;
     }
-    flux[1 + DIM][f] = a * (0.5 * (pL[f] * unL + pR[f] * unR) + 0.5 * (dL * (h0 + 0.5 * kL) - dR * (h0 + 0.5 * kR))) +
+    f_energy[f] = a * (0.5 * (pL[f] * unL + pR[f] * unR) + 0.5 * (dL * (h0 + 0.5 * kL) - dR * (h0 + 0.5 * kR))) +
                        M * (w * Eu + pu * unu);
   }
   (void)g;

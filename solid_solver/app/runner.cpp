@@ -1,0 +1,162 @@
+#include "solid_solver/app/runner.h"
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <memory>
+
+#include "common/config/config.h"
+#include "common/io/atomic_file.h"
+#include "common/util/progress.h"
+#include "solid_solver/io/solid_output.h"
+
+namespace cosim::solid {
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+void on_signal(int) { g_interrupted = true; }
+
+struct RunRecord {
+  std::string status = "running", error;
+  double wall = 0;
+  EnergyBudget start;
+};
+
+void write_summary(const std::filesystem::path& dir, const Simulation& sim, const RunRecord& rec) {
+  const SolidScene& s = sim.scene();
+  nlohmann::json j;
+  j["status"] = rec.status;
+  if (!rec.error.empty()) j["error"] = rec.error;
+  j["scene"] = s.name;
+  j["dimension"] = s.dim;
+  j["elements"] = sim.mesh().num_elements;
+  j["nodes"] = sim.mesh().num_nodes;
+  j["final_time"] = sim.time();
+  j["t_end"] = s.t_end;
+  j["steps"] = sim.steps();
+  j["wall_time_s"] = rec.wall;
+  const double zc = static_cast<double>(sim.steps()) * sim.mesh().num_elements;
+  j["zone_cycles"] = zc;
+  j["zone_cycles_per_s"] = rec.wall > 0 ? zc / rec.wall : 0.0;
+  j["bytes_per_element"] = sim.bytes_per_element();
+  j["threads"] = omp_get_max_threads();
+  const EnergyBudget e = sim.energy();
+  const double e0 = rec.start.total();
+  j["energy"] = {{"start", energy_json(rec.start)},
+                 {"end", energy_json(e)},
+                 {"balance_error", e.total() - e0 - e.boundary_work},
+                 {"relative_balance_error", e0 != 0 ? (e.total() - e0 - e.boundary_work) / std::abs(e0) : 0.0}};
+  io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
+}
+}  // namespace
+
+int run_solid(const RunOptions& opt) {
+  SolidScene scene;
+  try {
+    scene = load_solid_scene(opt.scene_file, opt.overrides);
+    if (opt.threads > 0) scene.threads = opt.threads;
+  } catch (const config::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  if (scene.threads > 0) omp_set_num_threads(scene.threads);
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
+    spdlog::error("--out {}: cannot create the output directory ({})", opt.out_dir.string(), ec.message());
+    return 4;
+  }
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = std::make_unique<Simulation>(scene);
+  } catch (const StateError& e) {
+    spdlog::error("{}: {}", opt.scene_file, e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
+    return 2;
+  }
+  spdlog::info("{}: {}D, {} elements, {} nodes, {} block(s), {} thread(s)", scene.name, scene.dim,
+               sim->mesh().num_elements, sim->mesh().num_nodes, scene.blocks.size(), omp_get_max_threads());
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  io::SnapshotSeries series(opt.out_dir, "solid");
+  RunRecord rec;
+  rec.start = sim->energy();
+  util::Progress progress(!opt.quiet);
+  int code = 0;
+  double t_last = 0.0, rate = 0.0;
+  long steps_last = 0;
+  try {
+    if (scene.write_snapshots) write_snapshot(series, *sim);
+    for (double t_out : scene.output_times) {
+      while (sim->time() < t_out * (1.0 - 1e-14) && sim->steps() < scene.max_steps) {
+        if (g_interrupted) throw std::runtime_error("interrupted");
+        double dt = sim->stable_dt();
+        const double remaining = t_out - sim->time();
+        if (dt >= remaining) dt = remaining;
+        else if (dt > 0.5 * remaining) dt = 0.5 * remaining;
+        if (!(dt > 0.0) || !std::isfinite(dt) || dt < scene.numerics.dt_min)
+          throw StateError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim->time(),
+                                       sim->steps()));
+        sim->advance(dt);
+        const double now = progress.elapsed();
+        if (now - t_last > 1.0) {
+          rate = static_cast<double>(sim->steps() - steps_last) * sim->mesh().num_elements / (now - t_last);
+          t_last = now;
+          steps_last = sim->steps();
+        }
+        progress.update(sim->steps(), sim->time(), scene.t_end,
+                        fmt::format("dt={:.3g}  {:.3g} Mzone-cycles/s", dt, rate * 1e-6));
+      }
+      if (scene.write_snapshots) write_snapshot(series, *sim);
+      if (sim->steps() >= scene.max_steps) {
+        spdlog::warn("stopped at max_steps = {} (t = {:.6g})", scene.max_steps, sim->time());
+        break;
+      }
+    }
+    rec.status = "completed";
+  } catch (const StateError& e) {
+    rec.status = "failed";
+    rec.error = e.what();
+    spdlog::error("{}", e.what());
+    code = 3;
+  } catch (const std::runtime_error& e) {
+    if (g_interrupted) {
+      rec.status = "interrupted";
+      spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim->time());
+      code = 130;
+    } else {
+      rec.status = "failed";
+      rec.error = e.what();
+      spdlog::error("{}", e.what());
+      code = 4;
+    }
+  }
+  progress.finish();
+  rec.wall = progress.elapsed();
+  try {
+    write_summary(opt.out_dir, *sim, rec);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot write summary.json: {}", e.what());
+    return code ? code : 4;
+  }
+  if (code == 0) {
+    const EnergyBudget e = sim->energy();
+    spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {:.3g} Mzone-cycles/s, energy balance error {:.3g} "
+                 "(relative), {} snapshot(s) in {}",
+                 sim->time(), sim->steps(), rec.wall,
+                 rec.wall > 0 ? 1e-6 * sim->steps() * sim->mesh().num_elements / rec.wall : 0.0,
+                 rec.start.total() != 0 ? (e.total() - rec.start.total() - e.boundary_work) / std::abs(rec.start.total())
+                                        : 0.0,
+                 series.count(), opt.out_dir.string());
+  }
+  return code;
+}
+
+}  // namespace cosim::solid

@@ -1,0 +1,303 @@
+#include "solid_solver/core/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <set>
+
+#include "common/eos/materials.h"
+
+namespace cosim::solid {
+
+using config::Node;
+
+namespace {
+
+// Rejects unknown keys (with a did-you-mean suggestion) before any required key is read, so that a typo in a
+// required key is reported as the typo rather than as a missing key.
+void known_keys(Node& n, std::initializer_list<const char*> keys) {
+  for (const char* k : keys) n.skip(k);
+  n.finish();
+}
+
+std::array<double, 3> read_point(Node& n, const std::string& key, int dim,
+                                 std::optional<std::vector<double>> fb = std::nullopt) {
+  auto v = n.get_vector(key, dim, dim, fb);
+  std::array<double, 3> out{0, 0, 0};
+  for (int d = 0; d < dim; ++d) out[d] = v[d];
+  return out;
+}
+
+MaterialModel read_material(Node& b, int /*dim*/) {
+  MaterialModel m;
+  m.library_name = b.get<std::string>("material", "custom");
+  const eos::MieGruneisenParams* lib = nullptr;
+  if (m.library_name != "custom") {
+    const auto* mat = eos::find_material(m.library_name);
+    if (!mat || !mat->mg) {
+      std::vector<std::string> names = {"custom"};
+      for (const auto& x : eos::material_library())
+        if (x.mg) names.push_back(x.name);
+      b.fail("material", config::one_of(names)(m.library_name) + ", got '" + m.library_name + "'");
+    }
+    lib = &*mat->mg;
+    m.eos = EosKind::MieGruneisen;
+    m.mg = {lib->rho0, lib->c0, lib->s, lib->gamma0};
+    m.density = lib->rho0;
+  }
+  auto e = b.optional_child("eos");
+  if (e) {
+    known_keys(*e, {"type", "gamma", "bulk_modulus", "rho0", "c0", "s", "gamma0", "p_min"});
+    const std::string type = e->get<std::string>(
+        "type", lib ? "mie_gruneisen" : "", config::one_of({"ideal_gas", "linear_elastic", "mie_gruneisen"}));
+    if (type.empty()) e->fail("type", "one of ideal_gas, linear_elastic, mie_gruneisen");
+    if (type == "ideal_gas") {
+      m.eos = EosKind::IdealGas;
+      m.ideal.gamma = e->require<double>("gamma", config::in_open_closed(1.0, 100.0));
+    } else if (type == "linear_elastic") {
+      m.eos = EosKind::LinearElastic;
+      m.linear.bulk_modulus = e->require<double>("bulk_modulus", config::positive());
+    } else {
+      m.eos = EosKind::MieGruneisen;
+      m.mg.rho0 = e->get<double>("rho0", lib ? lib->rho0 : 0.0, config::positive());
+      m.mg.c0 = e->get<double>("c0", lib ? lib->c0 : 0.0, config::positive());
+      m.mg.s = e->get<double>("s", lib ? lib->s : 0.0, config::non_negative());
+      m.mg.gamma0 = e->get<double>("gamma0", lib ? lib->gamma0 : 0.0, config::positive());
+      if (!lib && !(m.mg.rho0 > 0 && m.mg.c0 > 0 && m.mg.gamma0 > 0))
+        e->fail("rho0", "rho0, c0, s and gamma0 for a custom mie_gruneisen eos (or a library material)");
+      m.density = m.mg.rho0;
+    }
+    m.p_min = e->get<double>("p_min", m.p_min);
+    e->finish();
+  } else if (!lib) {
+    b.fail("eos", "an eos section {type: ideal_gas | linear_elastic | mie_gruneisen, ...} or a library material");
+  }
+  // Density: required for ideal gas and linear elastic, defaults to rho0 for Mie-Grueneisen.
+  if (m.eos == EosKind::MieGruneisen) m.density = b.get<double>("density", m.mg.rho0, config::positive());
+  else m.density = b.require<double>("density", config::positive());
+  m.linear.rho_ref = m.density;
+  if (auto s = b.optional_child("strength")) {
+    known_keys(*s, {"enabled", "shear_modulus", "yield_stress", "hardening"});
+    m.strength.enabled = s->get<bool>("enabled", true);
+    m.strength.shear_modulus = s->require<double>("shear_modulus", config::positive());
+    m.strength.yield_stress = s->get<double>("yield_stress", 1e300, config::positive());
+    m.strength.hardening = s->get<double>("hardening", 0.0, config::non_negative());
+    s->finish();
+  }
+  return m;
+}
+
+BlockSpec read_block(Node& b, int dim) {
+  BlockSpec s;
+  known_keys(b, {"name", "material", "eos", "density", "strength", "initial"});
+  s.name = b.require<std::string>("name");
+  s.material = read_material(b, dim);
+  if (auto in = b.optional_child("initial")) {
+    s.energy = in->get<double>("energy", 0.0);
+    if (in->has("pressure")) {
+      s.has_pressure = true;
+      s.pressure = in->get<double>("pressure", 0.0);
+      if (in->has("energy")) in->fail("pressure", "either energy or pressure, not both");
+      if (s.material.eos == EosKind::LinearElastic)
+        in->fail("pressure", "no initial pressure for linear_elastic (its pressure follows the density)");
+      if (s.material.eos == EosKind::IdealGas && s.pressure < 0)
+        in->fail("pressure", "a pressure >= 0 for an ideal gas");
+    }
+    s.velocity = read_point(*in, "velocity", dim, std::vector<double>(dim, 0.0));
+    if (in->has("deviator")) {
+      auto v = in->get_vector("deviator", 6, 6);
+      std::copy(v.begin(), v.end(), s.deviator.begin());
+      if (std::abs(v[0] + v[1] + v[2]) > 1e-12 * (std::abs(v[0]) + std::abs(v[1]) + std::abs(v[2])))
+        in->fail("deviator", "a traceless stress deviator [xx, yy, zz, xy, yz, zx] (xx + yy + zz = 0)");
+      if (dim == 2 && (v[4] != 0 || v[5] != 0)) in->fail("deviator", "yz = zx = 0 in 2D (plane strain)");
+    }
+    in->skip("deviator");
+    in->finish();
+  }
+  if (s.material.eos == EosKind::IdealGas && !s.has_pressure && s.energy < 0)
+    b.fail("initial", "a specific internal energy >= 0 for an ideal gas");
+  b.finish();
+  return s;
+}
+
+BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) {
+  BoundarySpec b;
+  known_keys(n, {"set", "type", "vx", "vy", "vz", "value", "ramp"});
+  b.set = n.require<std::string>("set");
+  if (!sets.count(b.set)) {
+    std::string list;
+    for (auto& s : sets) list += (list.empty() ? "" : ", ") + s;
+    std::string hint = config::closest(b.set, sets);
+    n.fail("set", "a boundary set of the mesh (" + list + ")" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
+                      ", got '" + b.set + "'");
+  }
+  const std::string type =
+      n.require<std::string>("type", config::one_of({"fixed", "symmetry", "velocity", "pressure"}));
+  if (type == "fixed") b.kind = BcKind::Fixed;
+  else if (type == "symmetry") b.kind = BcKind::Symmetry;
+  else if (type == "velocity") {
+    b.kind = BcKind::Velocity;
+    const char* keys[3] = {"vx", "vy", "vz"};
+    for (int d = 0; d < 3; ++d) {
+      n.skip(keys[d]);
+      if (!n.has(keys[d])) continue;
+      if (d >= dim) n.fail(keys[d], fmt::format("a velocity component of a {}D mesh", dim));
+      b.component[d] = true;
+      b.velocity[d] = n.get<double>(keys[d], 0.0);
+    }
+    if (!b.component[0] && !b.component[1] && !b.component[2])
+      n.fail("vx", "at least one prescribed velocity component vx, vy or vz [m/s]");
+  } else {
+    b.kind = BcKind::Pressure;
+    b.pressure = n.require<double>("value");
+  }
+  b.ramp = n.get<double>("ramp", 0.0, config::non_negative());
+  n.finish();
+  return b;
+}
+
+}  // namespace
+
+SolidScene read_solid_scene(Node& root) {
+  SolidScene s;
+  Node sn = root.child("solid");
+  known_keys(sn, {"mesh", "blocks", "boundaries", "initial", "numerics", "time", "output", "threads"});
+
+  Node mesh = sn.child("mesh");
+  known_keys(mesh, {"type", "cells", "lower", "upper", "regions"});
+  mesh.get<std::string>("type", "box", config::one_of({"box"}));
+  auto cells = mesh.get_vector("cells", 2, 3);
+  s.dim = static_cast<int>(cells.size());
+  for (int d = 0; d < s.dim; ++d) {
+    if (cells[d] < 1 || cells[d] != std::floor(cells[d]) || cells[d] > 1e7)
+      mesh.fail("cells", "positive whole numbers of cells per direction");
+    s.cells[d] = static_cast<int>(cells[d]);
+  }
+  double total = 1;
+  for (int d = 0; d < s.dim; ++d) total *= s.cells[d];
+  if (total > 2e9 / 8) mesh.fail("cells", "fewer than 2.5e8 elements");
+  s.lower = read_point(mesh, "lower", s.dim, std::vector<double>(s.dim, 0.0));
+  s.upper = read_point(mesh, "upper", s.dim);
+  for (int d = 0; d < s.dim; ++d)
+    if (!(s.upper[d] > s.lower[d])) mesh.fail("upper", "upper > lower in every direction");
+  mesh.skip("regions");
+  std::vector<Node> region_nodes;
+  if (mesh.has("regions")) region_nodes = mesh.list("regions");
+  mesh.finish();
+
+  auto blist = sn.list("blocks");
+  if (blist.empty()) sn.fail("blocks", "at least one block");
+  std::set<std::string> names;
+  for (auto& bn : blist) {
+    s.blocks.push_back(read_block(bn, s.dim));
+    if (!names.insert(s.blocks.back().name).second)
+      bn.fail("name", "a block name used only once, got '" + s.blocks.back().name + "' again");
+  }
+  for (auto& rn : region_nodes) {
+    RegionSpec r;
+    known_keys(rn, {"block", "lower", "upper"});
+    r.block = rn.require<std::string>("block");
+    if (!names.count(r.block)) {
+      std::string hint = config::closest(r.block, names);
+      rn.fail("block", "the name of a block in solid.blocks" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
+                           ", got '" + r.block + "'");
+    }
+    r.lower = read_point(rn, "lower", s.dim);
+    r.upper = read_point(rn, "upper", s.dim);
+    rn.finish();
+    s.regions.push_back(r);
+  }
+
+  std::set<std::string> sets;
+  const char* axes = "xyz";
+  for (int d = 0; d < s.dim; ++d) {
+    sets.insert(std::string(1, axes[d]) + "_lower");
+    sets.insert(std::string(1, axes[d]) + "_upper");
+  }
+  sn.skip("boundaries");
+  if (sn.has("boundaries"))
+    for (auto& bn : sn.list("boundaries")) s.boundaries.push_back(read_boundary(bn, s.dim, sets));
+
+  if (auto init = sn.optional_child("initial")) {
+    init->skip("energy_deposits");
+    if (init->has("energy_deposits"))
+      for (auto& dn : init->list("energy_deposits")) {
+        DepositSpec dep;
+        known_keys(dn, {"energy", "point", "lower", "upper"});
+        dep.energy = dn.require<double>("energy", config::positive());
+        const bool p = dn.has("point"), bx = dn.has("lower") || dn.has("upper");
+        if (p == bx) dn.fail("point", "either point: [..] or lower: [..], upper: [..]");
+        dep.is_point = p;
+        if (p) dep.point = read_point(dn, "point", s.dim);
+        else {
+          dep.lower = read_point(dn, "lower", s.dim);
+          dep.upper = read_point(dn, "upper", s.dim);
+        }
+        dn.finish();
+        s.deposits.push_back(dep);
+      }
+    init->finish();
+  }
+
+  if (auto num = sn.optional_child("numerics")) {
+    Numerics& nu = s.numerics;
+    nu.cfl = num->get<double>("cfl", nu.cfl, config::in_open_closed(0.0, 1.0));
+    nu.q_quadratic = num->get<double>("q_quadratic", nu.q_quadratic, config::non_negative());
+    nu.q_linear = num->get<double>("q_linear", nu.q_linear, config::non_negative());
+    nu.hourglass = num->get<double>("hourglass", nu.hourglass, config::in_range(0.0, 1.0));
+    nu.dt_growth = num->get<double>("dt_growth", nu.dt_growth, config::in_range(1.0, 10.0));
+    nu.dt_initial = num->get<double>("dt_initial", nu.dt_initial, config::non_negative());
+    nu.dt_min = num->get<double>("dt_min", nu.dt_min, config::non_negative());
+    num->finish();
+  }
+
+  Node time = sn.child("time");
+  known_keys(time, {"end", "max_steps"});
+  s.t_end = time.require<double>("end", config::positive());
+  s.max_steps = time.get<long>("max_steps", s.max_steps,
+                               [](const long& v) { return v >= 1 ? std::string() : std::string("an integer >= 1"); });
+  time.finish();
+
+  if (auto out = sn.optional_child("output")) {
+    const double interval = out->get<double>("interval", 0.0, config::non_negative());
+    out->skip("times");
+    if (out->has("times")) s.output_times = out->get_vector("times", 1, 100000, std::nullopt, config::positive());
+    if (interval > 0)
+      for (int i = 1; i * interval < s.t_end * (1 - 1e-12); ++i) s.output_times.push_back(i * interval);
+    s.write_snapshots = out->get<bool>("snapshots", true);
+    out->finish();
+  }
+  s.output_times.push_back(s.t_end);
+  std::sort(s.output_times.begin(), s.output_times.end());
+  s.output_times.erase(std::remove_if(s.output_times.begin(), s.output_times.end(),
+                                      [&](double t) { return t > s.t_end; }),
+                       s.output_times.end());
+  s.output_times.erase(std::unique(s.output_times.begin(), s.output_times.end()), s.output_times.end());
+
+  s.threads = sn.get<int>("threads", 0, config::int_at_least(0));
+  sn.finish();
+  return s;
+}
+
+namespace {
+SolidScene read_document(Node root) {
+  SolidScene s = read_solid_scene(root);
+  s.name = root.get<std::string>("name", "scene");
+  root.get<std::string>("description", "");
+  for (const char* other : {"fluid", "coupling", "launcher"}) root.skip(other);
+  root.finish();
+  return s;
+}
+}  // namespace
+
+SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  return read_document(config::load_file(file, overrides));
+}
+
+SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides) {
+  return read_document(config::load_string(yaml_text, "<scene>", overrides));
+}
+
+}  // namespace cosim::solid

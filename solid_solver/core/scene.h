@@ -1,0 +1,78 @@
+// The solid part of a scene (section `solid:`), read and validated from YAML. Plain data.
+// Every key, its unit and its default are listed in solid_solver/README-keys.md.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/config/config.h"
+#include "solid_solver/materials/material.h"
+
+namespace cosim::solid {
+
+struct BlockSpec {
+  std::string name;
+  MaterialModel material;
+  double energy = 0.0;                           // initial specific internal energy [J/kg]
+  bool has_pressure = false;
+  double pressure = 0.0;                         // initial pressure [Pa] (sets the energy)
+  std::array<double, 3> velocity{0, 0, 0};       // initial velocity [m/s]
+  std::array<double, 6> deviator{0, 0, 0, 0, 0, 0};  // initial deviatoric stress (xx,yy,zz,xy,yz,zx) [Pa]
+};
+
+struct RegionSpec {  // elements whose centroid lies in [lower, upper] belong to `block`
+  std::string block;
+  std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0};
+};
+
+enum class BcKind { Fixed, Symmetry, Velocity, Pressure };
+
+struct BoundarySpec {
+  std::string set;
+  BcKind kind = BcKind::Fixed;
+  std::array<bool, 3> component{false, false, false};  // Velocity: which components are prescribed
+  std::array<double, 3> velocity{0, 0, 0};             // [m/s]
+  double pressure = 0.0;                               // [Pa]
+  double ramp = 0.0;                                   // [s] linear ramp from 0 (0: applied at once)
+};
+
+struct DepositSpec {  // energy [J] added to the element nearest `point`, or split by mass over a box
+  bool is_point = true;
+  std::array<double, 3> point{0, 0, 0}, lower{0, 0, 0}, upper{0, 0, 0};
+  double energy = 0.0;
+};
+
+struct Numerics {
+  double cfl = 0.5;           // safety factor on the element stable time step
+  double q_quadratic = 1.5;   // C_q in q = rho L (C_q^2 L |div v| + C_l c) |div v| (compression only)
+  double q_linear = 0.06;     // C_l
+  double hourglass = 0.03;    // kappa in the FB viscous hourglass coefficient kappa rho c V^((D-1)/D)
+  double dt_growth = 1.2;     // largest ratio of successive time steps
+  double dt_initial = 0.0;    // [s] first time step (0: the stable step)
+  double dt_min = 0.0;        // [s] a step below this is a numerical failure
+};
+
+struct SolidScene {
+  std::string name = "scene";
+  int dim = 3;
+  std::array<int, 3> cells{1, 1, 1};
+  std::array<double, 3> lower{0, 0, 0}, upper{1, 1, 1};
+  std::vector<RegionSpec> regions;
+  std::vector<BlockSpec> blocks;
+  std::vector<BoundarySpec> boundaries;
+  std::vector<DepositSpec> deposits;
+  Numerics numerics;
+  double t_end = 0.0;
+  long max_steps = 100000000L;
+  std::vector<double> output_times;  // always ends with t_end
+  bool write_snapshots = true;
+  int threads = 0;
+};
+
+// Reads the `solid:` section of a scene; skips fluid, coupling and launcher. Throws config::ConfigError.
+SolidScene read_solid_scene(config::Node& root);
+SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides = {});
+
+}  // namespace cosim::solid

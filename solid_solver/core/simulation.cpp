@@ -1,0 +1,340 @@
+#include "solid_solver/core/simulation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "solid_solver/forces/element_kernel.h"
+
+namespace cosim::solid {
+
+Mesh build_mesh(const SolidScene& s) {
+  Mesh m = make_box_mesh(s.dim, s.cells, s.lower, s.upper);
+  m.block_names.clear();
+  for (const auto& b : s.blocks) m.block_names.push_back(b.name);
+  for (int e = 0; e < m.num_elements; ++e) {
+    const auto c = element_centroid(m, m.x0, e);
+    for (const auto& r : s.regions) {
+      bool in = true;
+      for (int d = 0; d < s.dim; ++d) in = in && c[d] >= r.lower[d] && c[d] <= r.upper[d];
+      if (!in) continue;
+      for (std::size_t b = 0; b < s.blocks.size(); ++b)
+        if (s.blocks[b].name == r.block) m.element_block[e] = static_cast<int>(b);
+    }
+  }
+  finalize_mesh(m);
+  for (std::size_t b = 0; b < s.blocks.size(); ++b)
+    if (m.block_range[b][0] == m.block_range[b][1])
+      throw std::runtime_error(fmt::format("block '{}' has no elements (no element centroid lies in its regions)",
+                                           s.blocks[b].name));
+  return m;
+}
+
+Simulation::Simulation(const SolidScene& scene) : scene_(scene), mesh_(build_mesh(scene)) { setup(); }
+
+Simulation::Simulation(const SolidScene& scene, Mesh mesh) : scene_(scene), mesh_(std::move(mesh)) {
+  if (mesh_.node_corner_offset.empty()) finalize_mesh(mesh_);
+  if (mesh_.block_names.size() != scene_.blocks.size())
+    throw std::runtime_error("mesh and scene disagree on the number of blocks");
+  setup();
+}
+
+void Simulation::setup() {
+  const int D = mesh_.dim, N = mesh_.npe, nn = mesh_.num_nodes, ne = mesh_.num_elements;
+  st_.x = mesh_.x0;
+  st_.v.assign(static_cast<std::size_t>(nn) * D, 0.0);
+  st_.vbar.assign(st_.v.size(), 0.0);
+  st_.mass.assign(nn, 0.0);
+  st_.fext.assign(st_.v.size(), 0.0);
+  st_.bc_mask.assign(nn, 0);
+  st_.bc_value.assign(st_.v.size(), 0.0);
+  st_.bc_ramp.assign(nn, 0.0);
+  st_.emass.assign(ne, 0.0);
+  st_.vol.assign(ne, 0.0);
+  st_.ie.assign(ne, 0.0);
+  st_.p.assign(ne, 0.0);
+  st_.q.assign(ne, 0.0);
+  st_.c.assign(ne, 0.0);
+  st_.s.assign(static_cast<std::size_t>(ne) * 6, 0.0);
+  st_.eps_p.assign(ne, 0.0);
+  st_.fc.assign(static_cast<std::size_t>(ne) * N * D, 0.0);
+
+  // Element mass, energy, deviator; nodal mass (lumped: M/npe per corner) and velocity.
+  std::vector<double> vsum(st_.v.size(), 0.0), msum(nn, 0.0);
+  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
+    const BlockSpec& bs = scene_.blocks[b];
+    const double rho = bs.material.density;
+    const double e0 = bs.has_pressure ? bs.material.energy_from_pressure(rho, bs.pressure) : bs.energy;
+    for (int z = mesh_.block_range[b][0]; z < mesh_.block_range[b][1]; ++z) {
+      double x[8][3] = {};
+      const int* cn = &mesh_.conn[static_cast<std::size_t>(z) * N];
+      double V;
+      if (D == 2) {
+        double x2[4][2], B2[4][2];
+        for (int a = 0; a < 4; ++a)
+          for (int d = 0; d < 2; ++d) x2[a][d] = st_.x[static_cast<std::size_t>(cn[a]) * 2 + d];
+        V = element_b_matrix(x2, B2);
+      } else {
+        double B3[8][3];
+        for (int a = 0; a < 8; ++a)
+          for (int d = 0; d < 3; ++d) x[a][d] = st_.x[static_cast<std::size_t>(cn[a]) * 3 + d];
+        V = element_b_matrix(x, B3);
+      }
+      if (!(V > 0.0)) {
+        const auto c = element_centroid(mesh_, st_.x, z);
+        throw std::runtime_error(fmt::format("element {} of block '{}' near ({:.6g}, {:.6g}, {:.6g}) is inverted or "
+                                             "degenerate (volume {:.6g})", z, bs.name, c[0], c[1], c[2], V));
+      }
+      st_.vol[z] = V;
+      st_.emass[z] = rho * V;
+      st_.ie[z] = e0 * rho * V;
+      for (int k = 0; k < 6; ++k) st_.s[static_cast<std::size_t>(z) * 6 + k] = bs.deviator[k];
+      for (int a = 0; a < N; ++a) {
+        msum[cn[a]] += rho * V / N;
+        for (int d = 0; d < D; ++d) vsum[static_cast<std::size_t>(cn[a]) * D + d] += rho * V / N * bs.velocity[d];
+      }
+    }
+  }
+  for (int n = 0; n < nn; ++n) {
+    st_.mass[n] = msum[n];
+    for (int d = 0; d < D; ++d) st_.v[static_cast<std::size_t>(n) * D + d] = vsum[static_cast<std::size_t>(n) * D + d] / msum[n];
+  }
+
+  // Energy deposits.
+  for (const auto& dep : scene_.deposits) {
+    if (dep.is_point) {
+      int best = 0;
+      double bd = 1e300;
+      for (int z = 0; z < ne; ++z) {
+        const auto c = element_centroid(mesh_, st_.x, z);
+        double d2 = 0;
+        for (int d = 0; d < D; ++d) d2 += (c[d] - dep.point[d]) * (c[d] - dep.point[d]);
+        if (d2 < bd) { bd = d2; best = z; }
+      }
+      st_.ie[best] += dep.energy;
+    } else {
+      std::vector<int> in;
+      double mtot = 0;
+      for (int z = 0; z < ne; ++z) {
+        const auto c = element_centroid(mesh_, st_.x, z);
+        bool ok = true;
+        for (int d = 0; d < D; ++d) ok = ok && c[d] >= dep.lower[d] && c[d] <= dep.upper[d];
+        if (ok) { in.push_back(z); mtot += st_.emass[z]; }
+      }
+      if (in.empty()) throw std::runtime_error("an energy deposit box contains no element centroid");
+      for (int z : in) st_.ie[z] += dep.energy * st_.emass[z] / mtot;
+    }
+  }
+
+  // Boundary conditions.
+  for (const auto& bc : scene_.boundaries) {
+    if (bc.kind == BcKind::Pressure) {
+      auto it = mesh_.face_sets.find(bc.set);
+      if (it == mesh_.face_sets.end()) throw std::runtime_error("no face set '" + bc.set + "' in the mesh");
+      loads_.push_back({&it->second, bc.pressure, bc.ramp});
+      for (const auto& f : it->second)
+        for (int q = 0; q < mesh_.face_nodes(); ++q) st_.bc_mask[f.nodes[q]] |= kBcLoaded;
+      continue;
+    }
+    auto it = mesh_.node_sets.find(bc.set);
+    if (it == mesh_.node_sets.end()) throw std::runtime_error("no node set '" + bc.set + "' in the mesh");
+    const int axis = bc.set[0] - 'x';
+    for (int n : it->second) {
+      for (int d = 0; d < D; ++d) {
+        bool on = false;
+        double val = 0.0;
+        if (bc.kind == BcKind::Fixed) on = true;
+        else if (bc.kind == BcKind::Symmetry) on = d == axis;  // box sides are axis-aligned planes
+        else if (bc.component[d]) { on = true; val = bc.velocity[d]; }
+        if (on) {
+          st_.bc_mask[n] |= static_cast<std::uint8_t>(1u << d);
+          st_.bc_value[static_cast<std::size_t>(n) * D + d] = val;
+        }
+      }
+      if (bc.kind == BcKind::Velocity) st_.bc_ramp[n] = bc.ramp;
+    }
+  }
+  for (int n = 0; n < nn; ++n)
+    if (st_.bc_mask[n] & kBcLoaded) loaded_nodes_.push_back(n);
+  apply_boundary_conditions();
+
+  // Initial element pass: stress, EOS, viscosity, corner forces and the stable step at t = 0.
+  element_update(0.0);
+  ke_ = 0.0;
+  for (int n = 0; n < nn; ++n)
+    for (int d = 0; d < D; ++d) {
+      const double vv = st_.v[static_cast<std::size_t>(n) * D + d];
+      ke_ += 0.5 * st_.mass[n] * vv * vv;
+    }
+}
+
+void Simulation::apply_boundary_conditions() {
+  const int D = mesh_.dim;
+  for (int n = 0; n < mesh_.num_nodes; ++n) {
+    const std::uint8_t m = st_.bc_mask[n];
+    if (!(m & 7)) continue;
+    const double r = st_.bc_ramp[n] > 0 ? std::min(1.0, t_ / st_.bc_ramp[n]) : 1.0;
+    for (int d = 0; d < D; ++d)
+      if (m & (1u << d)) st_.v[static_cast<std::size_t>(n) * D + d] = r * st_.bc_value[static_cast<std::size_t>(n) * D + d];
+  }
+}
+
+// Pressure p on a face: force -p A n, split equally over its nodes (exact for planar faces).
+void Simulation::apply_pressure_loads() {
+  const int D = mesh_.dim;
+  for (int n : loaded_nodes_)
+    for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(n) * D + d] = 0.0;
+  const double* x = st_.x.data();
+  for (const auto& L : loads_) {
+    const double p = L.pressure * (L.ramp > 0 ? std::min(1.0, t_ / L.ramp) : 1.0);
+    for (const auto& f : *L.faces) {
+      double an[3];
+      if (D == 2) {
+        const double* a = x + 2 * f.nodes[0];
+        const double* b = x + 2 * f.nodes[1];
+        an[0] = b[1] - a[1];
+        an[1] = -(b[0] - a[0]);
+        for (int k = 0; k < 2; ++k)
+          for (int d = 0; d < 2; ++d) st_.fext[2 * f.nodes[k] + d] -= 0.5 * p * an[d];
+      } else {
+        const double* p1 = x + 3 * f.nodes[0];
+        const double* p2 = x + 3 * f.nodes[1];
+        const double* p3 = x + 3 * f.nodes[2];
+        const double* p4 = x + 3 * f.nodes[3];
+        const double d1[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
+        const double d2[3] = {p4[0] - p2[0], p4[1] - p2[1], p4[2] - p2[2]};
+        an[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]);
+        an[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
+        an[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
+        for (int k = 0; k < 4; ++k)
+          for (int d = 0; d < 3; ++d) st_.fext[3 * static_cast<std::size_t>(f.nodes[k]) + d] -= 0.25 * p * an[d];
+      }
+    }
+  }
+}
+
+void Simulation::nodal_update(double dt) {
+  if (!loads_.empty()) apply_pressure_loads();
+  const int D = mesh_.dim;
+  const int nn = mesh_.num_nodes;
+  const int* off = mesh_.node_corner_offset.data();
+  const int* corners = mesh_.node_corners.data();
+  const int N = mesh_.npe;
+  const double* fc = st_.fc.data();
+  double* x = st_.x.data();
+  double* v = st_.v.data();
+  double* vb = st_.vbar.data();
+  const double* mass = st_.mass.data();
+  const double* fext = st_.fext.data();
+  const std::uint8_t* mask = st_.bc_mask.data();
+  const double* bval = st_.bc_value.data();
+  const double* bramp = st_.bc_ramp.data();
+  const double th = t_ + 0.5 * dt;
+  double ke = 0.0, wb = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : ke, wb) if (nn > 4096)
+  for (int n = 0; n < nn; ++n) {
+    double F[3] = {0, 0, 0};
+    for (int k = off[n]; k < off[n + 1]; ++k) {
+      const int c = corners[k];
+      const int z = c / N, a = c - z * N;
+      const double* f = fc + (static_cast<std::ptrdiff_t>(z) * N + a) * D;
+      for (int d = 0; d < D; ++d) F[d] += f[d];
+    }
+    const std::uint8_t m = mask[n];
+    const double im = 1.0 / mass[n];
+    const std::ptrdiff_t o = static_cast<std::ptrdiff_t>(n) * D;
+    double vn[3], e_old = 0.0, e_new = 0.0, fw = 0.0;
+    for (int d = 0; d < D; ++d) {
+      const double Ft = (m & kBcLoaded) ? F[d] + fext[o + d] : F[d];
+      vn[d] = v[o + d] + dt * Ft * im;
+      if (m & (1u << d)) vn[d] = (bramp[n] > 0 ? std::min(1.0, th / bramp[n]) : 1.0) * bval[o + d];
+      const double vbar = 0.5 * (v[o + d] + vn[d]);
+      e_old += v[o + d] * v[o + d];
+      e_new += vn[d] * vn[d];
+      fw += F[d] * vbar;
+      vb[o + d] = vbar;
+      v[o + d] = vn[d];
+      x[o + d] += dt * vn[d];
+    }
+    ke += 0.5 * mass[n] * e_new;
+    if (m) wb += 0.5 * mass[n] * (e_new - e_old) - dt * fw;
+  }
+  ke_ = ke;
+  wb_ += wb;
+}
+
+void Simulation::element_update(double dt) {
+  const int D = mesh_.dim;
+  ElementPassArgs A{mesh_.conn.data(), st_.x.data(), st_.v.data(), st_.vbar.data(), st_.emass.data(),
+                    st_.vol.data(), st_.ie.data(), st_.p.data(), st_.q.data(), st_.c.data(), st_.s.data(),
+                    st_.eps_p.data(), st_.fc.data(), dt,
+                    scene_.numerics.q_quadratic * scene_.numerics.q_quadratic, scene_.numerics.q_linear,
+                    scene_.numerics.hourglass, 0.0, Strength{}};
+  ElementPassResult R;
+  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
+    const MaterialModel& mat = scene_.blocks[b].material;
+    const int lo = mesh_.block_range[b][0], hi = mesh_.block_range[b][1];
+    A.p_min = mat.p_min;
+    A.strength = mat.strength;
+    const bool str = mat.strength.enabled;
+    auto run = [&](const auto& eos) {
+      using E = std::decay_t<decltype(eos)>;
+      if (D == 2) {
+        if (str) element_pass<2, E, true>(A, eos, lo, hi, R);
+        else element_pass<2, E, false>(A, eos, lo, hi, R);
+      } else {
+        if (str) element_pass<3, E, true>(A, eos, lo, hi, R);
+        else element_pass<3, E, false>(A, eos, lo, hi, R);
+      }
+    };
+    switch (mat.eos) {
+      case EosKind::IdealGas: run(mat.ideal); break;
+      case EosKind::LinearElastic: run(mat.linear); break;
+      case EosKind::MieGruneisen: run(mat.mg); break;
+    }
+  }
+  if (R.bad >= 0) {
+    const int z = R.bad;
+    const auto c = element_centroid(mesh_, st_.x, z);
+    const auto& bn = mesh_.block_names[mesh_.element_block[z]];
+    if (R.bad_kind == 1)
+      throw StateError(fmt::format("element {} of block '{}' inverted at t = {:.9g} (step {}), centroid ({:.6g}, "
+                                   "{:.6g}, {:.6g}), previous volume {:.6g}, pressure {:.6g} Pa",
+                                   z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.vol[z], st_.p[z]));
+    throw StateError(fmt::format("element {} of block '{}' has a non-finite state at t = {:.9g} (step {}), centroid "
+                                 "({:.6g}, {:.6g}, {:.6g}), energy {:.6g} J, pressure {:.6g} Pa",
+                                 z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.ie[z], st_.p[z]));
+  }
+  ie_sum_ = R.ie_sum;
+  dt_elem_ = R.dt_min;
+}
+
+void Simulation::advance(double dt) {
+  nodal_update(dt);
+  element_update(dt);
+  t_ += dt;
+  last_dt_ = dt;
+  ++steps_;
+}
+
+double Simulation::stable_dt() const {
+  double dt = scene_.numerics.cfl * dt_elem_;
+  if (steps_ == 0) {
+    if (scene_.numerics.dt_initial > 0) dt = std::min(dt, scene_.numerics.dt_initial);
+  } else {
+    dt = std::min(dt, scene_.numerics.dt_growth * last_dt_);
+  }
+  return dt;
+}
+
+EnergyBudget Simulation::energy() const { return {ie_sum_, ke_, wb_}; }
+
+double Simulation::bytes_per_element() const {
+  const double ne = mesh_.num_elements, nn = mesh_.num_nodes, D = mesh_.dim, N = mesh_.npe;
+  const double node_bytes = nn * (8.0 * (5 * D + 2) + 1 + 4);  // x v vbar fext bc_value, mass, ramp, mask, offset
+  const double elem_bytes = ne * (8.0 * (8 + 6 + N * D) + 4.0 * N + 4.0 + 4.0 * N);  // + conn, block, corners
+  return (node_bytes + elem_bytes) / ne;
+}
+
+}  // namespace cosim::solid
