@@ -256,17 +256,48 @@ class Solver final : public FluidSimulation {
     }, dummy);
   }
 
+  // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
+  // (same operators as relax_velocity / relax_pressure_kernel, numerics.md 2.5).
   void relax_row(std::size_t base, int len) {
     const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
     const bool prelax = scene_.exchange.pressure_relaxation;
     const double amin = scene_.exchange.alpha_min;
+    double* al = U_.var(Lay::alpha) + base;
+    double* m0 = U_.var(Lay::mass(0)) + base;
+    double* m1 = U_.var(Lay::mass(1)) + base;
+    double* E0 = U_.var(Lay::energy(0)) + base;
+    double* E1 = U_.var(Lay::energy(1)) + base;
+    double* q0[DIM];
+    double* q1[DIM];
+    for (int d = 0; d < DIM; ++d) {
+      q0[d] = U_.var(Lay::mom(0, d)) + base;
+      q1[d] = U_.var(Lay::mom(1, d)) + base;
+    }
+    const eos::StiffenedGas e0 = eos_[0], e1 = eos_[1];
+#pragma GCC ivdep
     for (int i = 0; i < len; ++i) {
-      const std::size_t c = base + i;
-      CellState2 s = load_cell(c);
-      s.alpha0 = std::clamp(s.alpha0, amin, 1.0 - amin);
-      if (vrelax) relax_velocity(s, DIM);
-      if (prelax) relax_pressure(s, eos_, DIM);
-      store_cell(c, s);
+      double a = std::min(std::max(al[i], amin), 1.0 - amin);
+      const double M0 = m0[i], M1 = m1[i];
+      double en0 = E0[i], en1 = E1[i], k0 = 0.0, k1 = 0.0;
+      for (int d = 0; d < DIM; ++d) {
+        double p0 = q0[d][i], p1 = q1[d][i];
+        if (vrelax) {  // mass-weighted mean velocity; kinetic energy lost becomes internal energy
+          const double ueq = (p0 + p1) / (M0 + M1);
+          en0 += M0 * ueq * (ueq - p0 / M0);
+          en1 += M1 * ueq * (ueq - p1 / M1);
+          p0 = M0 * ueq;
+          p1 = M1 * ueq;
+          q0[d][i] = p0;
+          q1[d][i] = p1;
+        }
+        k0 += p0 * p0;
+        k1 += p1 * p1;
+      }
+      if (prelax)
+        relax_pressure_kernel(a, M0, M1, 0.5 * k0 / (M0 * M0), 0.5 * k1 / (M1 * M1), en0, en1, e0, e1);
+      al[i] = a;
+      E0[i] = en0;
+      E1[i] = en1;
     }
   }
 
@@ -506,32 +537,11 @@ class Solver final : public FluidSimulation {
     const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
     const bool lowmach = scene_.low_mach;
     const double cutoff = scene_.low_mach_cutoff;
-    if constexpr (NP == 1 && FK == FluxKind::AUFS) {  // vectorised row kernel
-      const double* lv[Lay::kPrim];
-      const double* rv[Lay::kPrim];
-      double* fv[2 + DIM];
-      const std::size_t elen = edge_row_len();
-      for (int v = 0; v < Lay::kPrim; ++v) {
-        if constexpr (RM == ReconMode::First) {
-          lv[v] = W_.var(v) + base - s;
-          rv[v] = W_.var(v) + base;
-        } else {
-          lv[v] = left_edges + (Lay::kPrim + v) * elen + left_off;
-          rv[v] = right_edges + v * elen + right_off;
-        }
-      }
-      for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(0, q) * flen;
-      if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[0], cutoff);
-      else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[0], cutoff);
-      return;
-    }
-    for (int f = 0; f < len; ++f) {
+    // Face f's reconstructed left/right phase states and phase-0 volume fractions.
+    auto load_face = [&](int f, PhaseState<DIM> (&L)[NP], PhaseState<DIM> (&R)[NP], double& aL, double& aR) {
       const std::size_t cr = base + f, cl = cr - s;
-      PhaseState<DIM> L[NP], R[NP];
-      double aL = 1.0, aR = 1.0;
+      aL = aR = 1.0;
       if constexpr (RM == ReconMode::First) {
-        (void)left_edges;
-        (void)right_edges;
         for (int k = 0; k < NP; ++k) {
           L[k] = load_state(k, cl);
           R[k] = load_state(k, cr);
@@ -550,6 +560,70 @@ class Solver final : public FluidSimulation {
           aR = edge_alpha(right_edges, 0, f + right_off);
         }
       }
+    };
+    if constexpr (FK == FluxKind::AUFS) {
+      // Same-phase contacts with the vectorised AUFS row kernel, one phase at a time.
+      const std::size_t elen = edge_row_len();
+      for (int k = 0; k < NP; ++k) {
+        const double* lv[Lay::kPrimPerPhase];
+        const double* rv[Lay::kPrimPerPhase];
+        double* fv[2 + DIM];
+        for (int q = 0; q < Lay::kPrimPerPhase; ++q) {
+          const int v = Lay::rho(k) + q;
+          if constexpr (RM == ReconMode::First) {
+            lv[q] = W_.var(v) + base - s;
+            rv[q] = W_.var(v) + base;
+          } else {
+            lv[q] = left_edges + (Lay::kPrim + v) * elen + left_off;
+            rv[q] = right_edges + v * elen + right_off;
+          }
+        }
+        for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(k, q) * flen;
+        if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
+        else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[k], cutoff);
+      }
+      if constexpr (NP == 2) {
+        // Weight by the same-phase contact fractions S_kk = min(alpha_k-, alpha_k+).
+        const double* al = RM == ReconMode::First ? W_.var(Lay::palpha) + base - s
+                                                  : left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
+        const double* ar = RM == ReconMode::First ? W_.var(Lay::palpha) + base
+                                                  : right_edges + Lay::palpha * elen + right_off;
+        for (int q = 0; q < 2 + DIM; ++q) {
+          double* f0 = buf + fvar_flux(0, q) * flen;
+          double* f1 = buf + fvar_flux(1, q) * flen;
+#pragma GCC ivdep
+          for (int f = 0; f < len; ++f) {
+            f0[f] *= std::min(al[f], ar[f]);
+            f1[f] *= std::min(1.0 - al[f], 1.0 - ar[f]);
+          }
+        }
+        std::fill_n(buf + fvar_lag_left * flen, 6 * flen, 0.0);
+        // Cross contacts (and second-order intra-cell contacts) only where the volume fraction varies.
+        for (int f = 0; f < len; ++f) {
+          const double aRhi = RM == ReconMode::First ? ar[f] : edge_alpha(right_edges, 1, f + right_off);
+          if (al[f] == ar[f] && ar[f] == aRhi) continue;
+          PhaseState<DIM> L[NP], R[NP];
+          double aL, aR;
+          load_face(f, L, R, aL, aR);
+          FaceResult<DIM, NP> res;
+          for (int k = 0; k < NP; ++k) res.flux[k] = PhaseFlux<DIM>{};
+          const double S01 = std::max(0.0, aL - aR), S10 = std::max(0.0, aR - aL);
+          if (S01 > 0.0) cross_pair<DIM, NP, D>(L[0], eos_[0], 0, R[1], eos_[1], S01, res);
+          if (S10 > 0.0) cross_pair<DIM, NP, D>(L[1], eos_[1], 1, R[0], eos_[0], S10, res);
+          for (int k = 0; k < NP; ++k) {
+            buf[fvar_flux(k, 0) * flen + f] += res.flux[k].mass;
+            for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] += res.flux[k].mom[d];
+            buf[fvar_flux(k, 1 + DIM) * flen + f] += res.flux[k].energy;
+          }
+          store_lagrangian(buf, flen, f, res.to_left, add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
+        }
+      }
+      return;
+    }
+    for (int f = 0; f < len; ++f) {
+      PhaseState<DIM> L[NP], R[NP];
+      double aL, aR;
+      load_face(f, L, R, aL, aR);
       FaceResult<DIM, NP> res;
       if (lowmach) {
         PhaseState<DIM> sL[NP], sR[NP];
@@ -568,27 +642,41 @@ class Solver final : public FluidSimulation {
         for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] = res.flux[k].mom[d];
         buf[fvar_flux(k, 1 + DIM) * flen + f] = res.flux[k].energy;
       }
-      if constexpr (NP == 2) {
-        Lagrangian right = res.to_right;
-        if constexpr (RM != ReconMode::First) {
-          const double aRhi = edge_alpha(right_edges, 1, f + right_off);
-          if (aR != aRhi) {  // second-order DEM: contacts inside cell cr (numerics.md 2.6)
-            PhaseState<DIM> Rhi[NP];
-            for (int k = 0; k < NP; ++k) Rhi[k] = edge_state(right_edges, 1, k, f + right_off);
-            const Lagrangian in = intra_cell_term<DIM, D>(R, aR, Rhi, aRhi, eos_);
-            right.alpha += in.alpha;
-            right.mom += in.mom;
-            right.energy += in.energy;
-          }
-        }
-        buf[(fvar_lag_left + 0) * flen + f] = res.to_left.alpha;
-        buf[(fvar_lag_left + 1) * flen + f] = res.to_left.mom;
-        buf[(fvar_lag_left + 2) * flen + f] = res.to_left.energy;
-        buf[(fvar_lag_right + 0) * flen + f] = right.alpha;
-        buf[(fvar_lag_right + 1) * flen + f] = right.mom;
-        buf[(fvar_lag_right + 2) * flen + f] = right.energy;
-      }
+      if constexpr (NP == 2)
+        store_lagrangian(buf, flen, f, res.to_left, add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
     }
+  }
+
+  // Adds the second-order intra-cell Lagrangian term of the face's right cell (numerics.md 2.6).
+  template <int D, ReconMode RM>
+  Lagrangian add_intra_cell(const PhaseState<DIM> (&R)[NP], double aR, const double* right_edges, int e,
+                            Lagrangian right) const {
+    if constexpr (NP == 2 && RM != ReconMode::First) {
+      const double aRhi = edge_alpha(right_edges, 1, e);
+      if (aR != aRhi) {
+        PhaseState<DIM> Rhi[NP];
+        for (int k = 0; k < NP; ++k) Rhi[k] = edge_state(right_edges, 1, k, e);
+        const Lagrangian in = intra_cell_term<DIM, D>(R, aR, Rhi, aRhi, eos_);
+        right.alpha += in.alpha;
+        right.mom += in.mom;
+        right.energy += in.energy;
+      }
+    } else {
+      (void)R;
+      (void)aR;
+      (void)right_edges;
+      (void)e;
+    }
+    return right;
+  }
+
+  static void store_lagrangian(double* buf, std::size_t flen, int f, const Lagrangian& left, const Lagrangian& right) {
+    buf[(fvar_lag_left + 0) * flen + f] = left.alpha;
+    buf[(fvar_lag_left + 1) * flen + f] = left.mom;
+    buf[(fvar_lag_left + 2) * flen + f] = left.energy;
+    buf[(fvar_lag_right + 0) * flen + f] = right.alpha;
+    buf[(fvar_lag_right + 1) * flen + f] = right.mom;
+    buf[(fvar_lag_right + 2) * flen + f] = right.energy;
   }
 
   FluidScene scene_;

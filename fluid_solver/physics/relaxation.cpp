@@ -31,44 +31,8 @@ void relax_velocity(CellState2& s, int dim) {
 }
 
 double relax_pressure(CellState2& s, const eos::StiffenedGas (&eos)[2], int dim) {
-  double A[2], a[2], b[2], pi[2], g[2], ke[2];
-  for (int k = 0; k < 2; ++k) {
-    g[k] = eos[k].gamma;
-    pi[k] = eos[k].pinf;
-    ke[k] = kinetic_per_mass(s, k, dim);
-    A[k] = s.m[k] * (g[k] - 1.0) / g[k];
-    a[k] = s.E[k] / s.m[k] - ke[k] - eos[k].q;  // e_k0 - q_k
-    b[k] = alpha_of(s, k) / s.m[k];            // v_k0
-  }
-  // (1 - A0 b0 - A1 b1) p^2 + B p + C = 0 from sum_k m_k v_k(p) = 1 with
-  // v_k(p) = (g_k - 1)(e_k0 - q_k + p v_k0) / (g_k (p + pinf_k)).
-  const double qa = 1.0 - A[0] * b[0] - A[1] * b[1];
-  const double qb = pi[0] + pi[1] - A[0] * (a[0] + b[0] * pi[1]) - A[1] * (a[1] + b[1] * pi[0]);
-  const double qc = pi[0] * pi[1] - A[0] * a[0] * pi[1] - A[1] * a[1] * pi[0];
-  const double disc = std::max(qb * qb - 4.0 * qa * qc, 0.0);
-  const double sq = std::sqrt(disc);
-  double p = qb > 0.0 ? 2.0 * qc / (-qb - sq) : (-qb + sq) / (2.0 * qa);  // larger root, no cancellation
-  auto v_of = [&](int k, double pp) { return (g[k] - 1.0) * (a[k] + pp * b[k]) / (g[k] * (pp + pi[k])); };
-  // One Newton step on f(p) = sum_k m_k v_k(p) - 1 removes the round-off of the closed form.
-  {
-    double f = -1.0, df = 0.0;
-    for (int k = 0; k < 2; ++k) {
-      f += s.m[k] * v_of(k, p);
-      df += s.m[k] * (g[k] - 1.0) / g[k] * (b[k] * pi[k] - a[k]) / ((p + pi[k]) * (p + pi[k]));
-    }
-    if (df < 0.0 && std::isfinite(f / df)) p -= f / df;
-  }
-  const double pmin = -std::min(pi[0], pi[1]);
-  if (!(p > pmin) || !std::isfinite(p)) return p;  // leave the state; the admissibility check reports it
-  double alpha[2];
-  for (int k = 0; k < 2; ++k) {
-    const double v = v_of(k, p);
-    alpha[k] = s.m[k] * v;
-    const double e = a[k] + eos[k].q - p * (v - b[k]);
-    s.E[k] = s.m[k] * (e + ke[k]);
-  }
-  s.alpha0 = alpha[0] / (alpha[0] + alpha[1]);
-  return p;
+  return relax_pressure_kernel(s.alpha0, s.m[0], s.m[1], kinetic_per_mass(s, 0, dim), kinetic_per_mass(s, 1, dim),
+                               s.E[0], s.E[1], eos[0], eos[1]);
 }
 
 void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {
