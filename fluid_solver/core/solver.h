@@ -173,7 +173,7 @@ class Solver final : public FluidSimulation {
         if constexpr (NP == 2) {
           a0 = Uc[Lay::alpha][c];
           Wp[Lay::palpha][c] = a0;
-          if (!(a0 > 0.0 && a0 < 1.0)) acc = 1.0;
+          acc = (a0 > 0.0 && a0 < 1.0) ? acc : 1.0;
         }
         for (int k = 0; k < NP; ++k) {
           const double a = k == 0 ? a0 : 1.0 - a0;
@@ -193,7 +193,7 @@ class Solver final : public FluidSimulation {
           Wp[Lay::rho(k)][c] = rho;
           Wp[Lay::pres(k)][c] = p;
           Wp[Lay::sound(k)][c] = std::sqrt(c2);
-          if (!(rho > 0.0 && c2 > 0.0 && std::isfinite(c2))) acc = 1.0;
+          acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
         }
       }
     }, bad);
@@ -252,15 +252,21 @@ class Solver final : public FluidSimulation {
         else
           for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
       }
-      if constexpr (NP == 2) relax_row(base, len);
+      if constexpr (NP == 2) {
+        const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
+        const bool prelax = scene_.exchange.pressure_relaxation;
+        if (vrelax && prelax) relax_row<true, true>(base, len);
+        else if (vrelax) relax_row<true, false>(base, len);
+        else if (prelax) relax_row<false, true>(base, len);
+        else relax_row<false, false>(base, len);
+      }
     }, dummy);
   }
 
   // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
   // (same operators as relax_velocity / relax_pressure_kernel, numerics.md 2.5).
+  template <bool VRELAX, bool PRELAX>
   void relax_row(std::size_t base, int len) {
-    const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
-    const bool prelax = scene_.exchange.pressure_relaxation;
     const double amin = scene_.exchange.alpha_min;
     double* al = U_.var(Lay::alpha) + base;
     double* m0 = U_.var(Lay::mass(0)) + base;
@@ -281,7 +287,7 @@ class Solver final : public FluidSimulation {
       double en0 = E0[i], en1 = E1[i], k0 = 0.0, k1 = 0.0;
       for (int d = 0; d < DIM; ++d) {
         double p0 = q0[d][i], p1 = q1[d][i];
-        if (vrelax) {  // mass-weighted mean velocity; kinetic energy lost becomes internal energy
+        if constexpr (VRELAX) {  // mass-weighted mean velocity; kinetic energy lost becomes internal energy
           const double ueq = (p0 + p1) / (M0 + M1);
           en0 += M0 * ueq * (ueq - p0 / M0);
           en1 += M1 * ueq * (ueq - p1 / M1);
@@ -293,7 +299,7 @@ class Solver final : public FluidSimulation {
         k0 += p0 * p0;
         k1 += p1 * p1;
       }
-      if (prelax)
+      if constexpr (PRELAX)
         relax_pressure_kernel(a, M0, M1, 0.5 * k0 / (M0 * M0), 0.5 * k1 / (M1 * M1), en0, en1, e0, e1);
       al[i] = a;
       E0[i] = en0;
