@@ -70,7 +70,8 @@ class Solver final : public FluidSimulation {
         const std::size_t c = base + i;
         for (int k = 0; k < NP; ++k) {
           double s = 0;
-          for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + Wp[Lay::sound(k)][c]) / g_.dx[d];
+          const double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
+          for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
           acc = std::max(acc, s);
         }
       }
@@ -192,7 +193,6 @@ class Solver final : public FluidSimulation {
           const double c2 = e.gamma * (p + e.pinf) / rho;
           Wp[Lay::rho(k)][c] = rho;
           Wp[Lay::pres(k)][c] = p;
-          Wp[Lay::sound(k)][c] = std::sqrt(c2);
           acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
         }
       }
@@ -211,8 +211,8 @@ class Solver final : public FluidSimulation {
           bool bad = NP == 2 && !(a0 > 0.0 && a0 < 1.0);
           for (int k = 0; k < NP; ++k) {
             const double rho = W_.var(Lay::rho(k))[c], p = W_.var(Lay::pres(k))[c];
-            const double cs = W_.var(Lay::sound(k))[c];
-            if (!(rho > 0.0 && cs > 0.0 && std::isfinite(cs))) bad = true;
+            const double c2 = eos_[k].sound_speed_sq(rho, p);
+            if (!(rho > 0.0 && c2 > 0.0 && std::isfinite(c2))) bad = true;
             msg += fmt::format(" phase '{}': alpha={:.6g} rho={:.6g} p={:.6g} (p+pinf must be > 0, pinf={:.6g});",
                                scene_.phases[k].name, k == 0 ? a0 : 1.0 - a0, rho, p, eos_[k].pinf);
           }
@@ -343,11 +343,7 @@ class Solver final : public FluidSimulation {
   }
 
   void residual() {
-    double dummy = 0;
-    for_each_row([&](std::size_t base, int len, double&) {
-      for (int v = 0; v < Lay::kCons; ++v) std::fill_n(R_.var(v) + base, len, 0.0);
-    }, dummy);
-    sweep<0>();
+    sweep<0>();  // assigns R (no zeroing pass)
     if constexpr (DIM > 1) sweep<1>();
     if constexpr (DIM > 2) sweep<2>();
   }
@@ -400,9 +396,9 @@ class Solver final : public FluidSimulation {
         Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
         const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
         // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
-        if constexpr (RM != ReconMode::First) compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-        compute_faces<D, RM>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
-        apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
+        compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+        compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
+        apply_right<D, true>(sc.faces, flen, base, 0, n0, inv_dx);
         apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
       }
     } else {
@@ -419,11 +415,11 @@ class Solver final : public FluidSimulation {
         auto row_base = [&](int layer) { return D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer); };
         // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer.
         int prev = 0;
-        if constexpr (RM != ReconMode::First) compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
+        compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
         for (int layer = a; layer <= b; ++layer) {
           const std::size_t base = row_base(layer);
-          if constexpr (RM != ReconMode::First) compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
-          compute_faces<D, RM>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
+          compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+          compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
           if (layer < b) apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
           if (layer > a) apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
           prev = 1 - prev;
@@ -432,16 +428,23 @@ class Solver final : public FluidSimulation {
     }
   }
 
-  // Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f.
-  template <int D>
+  // Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f. The x sweep comes first
+  // and assigns instead (ASSIGN), which saves a pass that zeroes the residual.
+  template <int D, bool ASSIGN = false>
   void apply_right(const double* buf, std::size_t flen, std::size_t rbase, int f0, int f1, double inv_dx) {
     for (int k = 0; k < NP; ++k)
       for (int q = 0; q < 2 + DIM; ++q) {
         double* r = R_.var(Lay::mass(k) + q) + rbase;
         const double* F = buf + fvar_flux(k, q) * flen;
-        for (int f = f0; f < f1; ++f) r[f] += inv_dx * F[f];
+        if constexpr (ASSIGN)
+          for (int f = f0; f < f1; ++f) r[f] = inv_dx * F[f];
+        else
+          for (int f = f0; f < f1; ++f) r[f] += inv_dx * F[f];
       }
-    if constexpr (NP == 2) apply_lagrangian<D>(buf + fvar_lag_right * flen, flen, rbase, f0, f1, inv_dx);
+    if constexpr (NP == 2) {
+      if constexpr (ASSIGN) std::fill(R_.var(Lay::alpha) + rbase + f0, R_.var(Lay::alpha) + rbase + f1, 0.0);
+      apply_lagrangian<D>(buf + fvar_lag_right * flen, flen, rbase, f0, f1, inv_dx);
+    }
   }
   // Faces f in [f0, f1) subtract F and add Lag_left to cell lbase + f.
   template <int D>
@@ -474,18 +477,12 @@ class Solver final : public FluidSimulation {
     }
   }
 
-  PhaseState<DIM> load_state(int k, std::size_t c) const {
-    PhaseState<DIM> s;
-    s.rho = W_.var(Lay::rho(k))[c];
-    for (int d = 0; d < DIM; ++d) s.u[d] = W_.var(Lay::vel(k, d))[c];
-    s.p = W_.var(Lay::pres(k))[c];
-    s.c = W_.var(Lay::sound(k))[c];
-    return s;
-  }
-
   template <ReconMode RM>
   static double slope(double wm, double w0, double wp) {
-    if constexpr (RM == ReconMode::Minmod) return limited_slope<Limiter::Minmod>(w0 - wm, wp - w0);
+    if constexpr (RM == ReconMode::First) {  // first order: the edges are the cell values
+      (void)wm, (void)w0, (void)wp;
+      return 0.0;
+    } else if constexpr (RM == ReconMode::Minmod) return limited_slope<Limiter::Minmod>(w0 - wm, wp - w0);
     else if constexpr (RM == ReconMode::VanLeer) return limited_slope<Limiter::VanLeer>(w0 - wm, wp - w0);
     else return limited_slope<Limiter::MC>(w0 - wm, wp - w0);
   }
@@ -535,36 +532,23 @@ class Solver final : public FluidSimulation {
     return edges[(side * Lay::kPrim + Lay::palpha) * edge_row_len() + e];
   }
 
-  // Faces f in [0, len) of a row; the face's right cell is base + f. Left states: hi edges of
+  // Faces f in [0, len) of a row. Left states: hi edges of
   // `left_edges` at f + left_off; right states: lo edges of `right_edges` at f + right_off.
   template <int D, ReconMode RM>
-  void compute_faces(std::size_t base, int len, const double* left_edges, int left_off, const double* right_edges,
+  void compute_faces(int len, const double* left_edges, int left_off, const double* right_edges,
                      int right_off, double* buf, std::size_t flen) {
-    const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
     const bool lowmach = scene_.low_mach;
     const double cutoff = scene_.low_mach_cutoff;
     // Face f's reconstructed left/right phase states and phase-0 volume fractions.
     auto load_face = [&](int f, PhaseState<DIM> (&L)[NP], PhaseState<DIM> (&R)[NP], double& aL, double& aR) {
-      const std::size_t cr = base + f, cl = cr - s;
       aL = aR = 1.0;
-      if constexpr (RM == ReconMode::First) {
-        for (int k = 0; k < NP; ++k) {
-          L[k] = load_state(k, cl);
-          R[k] = load_state(k, cr);
-        }
-        if constexpr (NP == 2) {
-          aL = W_.var(Lay::palpha)[cl];
-          aR = W_.var(Lay::palpha)[cr];
-        }
-      } else {
-        for (int k = 0; k < NP; ++k) {
-          L[k] = edge_state(left_edges, 1, k, f + left_off);
-          R[k] = edge_state(right_edges, 0, k, f + right_off);
-        }
-        if constexpr (NP == 2) {
-          aL = edge_alpha(left_edges, 1, f + left_off);
-          aR = edge_alpha(right_edges, 0, f + right_off);
-        }
+      for (int k = 0; k < NP; ++k) {
+        L[k] = edge_state(left_edges, 1, k, f + left_off);
+        R[k] = edge_state(right_edges, 0, k, f + right_off);
+      }
+      if constexpr (NP == 2) {
+        aL = edge_alpha(left_edges, 1, f + left_off);
+        aR = edge_alpha(right_edges, 0, f + right_off);
       }
     };
     if constexpr (FK == FluxKind::AUFS) {
@@ -576,13 +560,8 @@ class Solver final : public FluidSimulation {
         double* fv[2 + DIM];
         for (int q = 0; q < Lay::kPrimPerPhase; ++q) {
           const int v = Lay::rho(k) + q;
-          if constexpr (RM == ReconMode::First) {
-            lv[q] = W_.var(v) + base - s;
-            rv[q] = W_.var(v) + base;
-          } else {
-            lv[q] = left_edges + (Lay::kPrim + v) * elen + left_off;
-            rv[q] = right_edges + v * elen + right_off;
-          }
+          lv[q] = left_edges + (Lay::kPrim + v) * elen + left_off;
+          rv[q] = right_edges + v * elen + right_off;
         }
         for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(k, q) * flen;
         if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
@@ -590,10 +569,8 @@ class Solver final : public FluidSimulation {
       }
       if constexpr (NP == 2) {
         // Weight by the same-phase contact fractions S_kk = min(alpha_k-, alpha_k+).
-        const double* al = RM == ReconMode::First ? W_.var(Lay::palpha) + base - s
-                                                  : left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
-        const double* ar = RM == ReconMode::First ? W_.var(Lay::palpha) + base
-                                                  : right_edges + Lay::palpha * elen + right_off;
+        const double* al = left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
+        const double* ar = right_edges + Lay::palpha * elen + right_off;
         for (int q = 0; q < 2 + DIM; ++q) {
           double* f0 = buf + fvar_flux(0, q) * flen;
           double* f1 = buf + fvar_flux(1, q) * flen;
@@ -606,7 +583,7 @@ class Solver final : public FluidSimulation {
         std::fill_n(buf + fvar_lag_left * flen, 6 * flen, 0.0);
         // Cross contacts (and second-order intra-cell contacts) only where the volume fraction varies.
         for (int f = 0; f < len; ++f) {
-          const double aRhi = RM == ReconMode::First ? ar[f] : edge_alpha(right_edges, 1, f + right_off);
+          const double aRhi = edge_alpha(right_edges, 1, f + right_off);
           if (al[f] == ar[f] && ar[f] == aRhi) continue;
           PhaseState<DIM> L[NP], R[NP];
           double aL, aR;
