@@ -13,7 +13,6 @@ double kinetic_per_mass(const CellState2& s, int k, int dim) {
   for (int d = 0; d < dim; ++d) q += s.mom[k][d] * s.mom[k][d];
   return 0.5 * q / (s.m[k] * s.m[k]);
 }
-double alpha_of(const CellState2& s, int k) { return k == 0 ? s.alpha0 : 1.0 - s.alpha0; }
 // Temperature from specific internal energy at density rho: e - q = cv T + pinf / rho (SG).
 double temperature(const eos::StiffenedGas& e, double rho, double eint) { return (eint - e.q - e.pinf / rho) / e.cv; }
 }  // namespace

@@ -31,7 +31,7 @@ double relax_pressure(CellState2& s, const eos::StiffenedGas (&eos)[2], int dim)
 // The same on one cell given phase masses m, kinetic energies per unit mass ke, total energies E
 // and alpha0; branch-free so that row loops over it vectorise. A state whose equilibrium pressure
 // is not admissible is left unchanged (the admissibility check then reports it).
-inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1, const double ke0,
+[[gnu::always_inline]] inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1, const double ke0,
                                     const double ke1, double& E0, double& E1, const eos::StiffenedGas& e0,
                                     const eos::StiffenedGas& e1) {
   const double g0 = e0.gamma, g1 = e1.gamma, pi0 = e0.pinf, pi1 = e1.pinf;
