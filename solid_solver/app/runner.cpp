@@ -50,6 +50,14 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
                  {"end", energy_json(e)},
                  {"balance_error", e.total() - e0 - e.boundary_work},
                  {"relative_balance_error", e0 != 0 ? (e.total() - e0 - e.boundary_work) / std::abs(e0) : 0.0}};
+  // Rigid blocks: final centre of mass and velocity (e.g. the piston position of solid_piston_1d).
+  for (const auto& rb : sim.rigid_bodies()) {
+    const int D = s.dim;
+    j["rigid_bodies"].push_back({{"block", s.blocks[rb.block].name},
+                                 {"mass", rb.mass},
+                                 {"centre_of_mass", std::vector<double>(rb.X, rb.X + D)},
+                                 {"velocity", std::vector<double>(rb.V, rb.V + D)}});
+  }
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 }  // namespace

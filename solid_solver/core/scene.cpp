@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <initializer_list>
 #include <set>
 
 #include "common/eos/materials.h"
+#include "solid_solver/mesh/gmsh_reader.h"
 
 namespace cosim::solid {
 
@@ -30,7 +32,7 @@ std::array<double, 3> read_point(Node& n, const std::string& key, int dim,
   return out;
 }
 
-MaterialModel read_material(Node& b, int /*dim*/) {
+MaterialModel read_material(Node& b, bool rigid, bool& has_eos) {
   MaterialModel m;
   m.library_name = b.get<std::string>("material", "custom");
   const eos::MieGruneisenParams* lib = nullptr;
@@ -71,6 +73,8 @@ MaterialModel read_material(Node& b, int /*dim*/) {
     }
     m.p_min = e->get<double>("p_min", m.p_min);
     e->finish();
+  } else if (!lib && rigid) {
+    has_eos = false;  // a rigid block needs only its density
   } else if (!lib) {
     b.fail("eos", "an eos section {type: ideal_gas | linear_elastic | mie_gruneisen, ...} or a library material");
   }
@@ -91,21 +95,30 @@ MaterialModel read_material(Node& b, int /*dim*/) {
 
 BlockSpec read_block(Node& b, int dim) {
   BlockSpec s;
-  known_keys(b, {"name", "material", "eos", "density", "strength", "initial"});
+  known_keys(b, {"name", "material", "eos", "density", "strength", "initial", "rigid"});
   s.name = b.require<std::string>("name");
-  s.material = read_material(b, dim);
+  s.rigid = b.get<bool>("rigid", false);
+  s.material = read_material(b, s.rigid, s.has_eos);
+  if (s.rigid && b.has("strength")) b.fail("strength", "no strength section for a rigid block (it has no stress)");
   if (auto in = b.optional_child("initial")) {
     s.energy = in->get<double>("energy", 0.0);
     if (in->has("pressure")) {
       s.has_pressure = true;
       s.pressure = in->get<double>("pressure", 0.0);
       if (in->has("energy")) in->fail("pressure", "either energy or pressure, not both");
+      if (!s.has_eos) in->fail("pressure", "no initial pressure for a rigid block without an eos");
       if (s.material.eos == EosKind::LinearElastic)
         in->fail("pressure", "no initial pressure for linear_elastic (its pressure follows the density)");
       if (s.material.eos == EosKind::IdealGas && s.pressure < 0)
         in->fail("pressure", "a pressure >= 0 for an ideal gas");
     }
     s.velocity = read_point(*in, "velocity", dim, std::vector<double>(dim, 0.0));
+    // Spin about the block's centre of mass: a scalar (about z) in 2D, [wx, wy, wz] in 3D.
+    in->skip("angular_velocity");
+    if (in->has("angular_velocity")) {
+      if (dim == 2) s.angular_velocity[2] = in->get<double>("angular_velocity", 0.0);
+      else s.angular_velocity = read_point(*in, "angular_velocity", 3);
+    }
     if (in->has("deviator")) {
       auto v = in->get_vector("deviator", 6, 6);
       std::copy(v.begin(), v.end(), s.deviator.begin());
@@ -160,31 +173,48 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
 
 }  // namespace
 
-SolidScene read_solid_scene(Node& root) {
+SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
   SolidScene s;
   Node sn = root.child("solid");
   known_keys(sn, {"mesh", "blocks", "boundaries", "initial", "numerics", "time", "output", "threads"});
 
   Node mesh = sn.child("mesh");
-  known_keys(mesh, {"type", "cells", "lower", "upper", "regions"});
-  mesh.get<std::string>("type", "box", config::one_of({"box"}));
-  auto cells = mesh.get_vector("cells", 2, 3);
-  s.dim = static_cast<int>(cells.size());
-  for (int d = 0; d < s.dim; ++d) {
-    if (cells[d] < 1 || cells[d] != std::floor(cells[d]) || cells[d] > 1e7)
-      mesh.fail("cells", "positive whole numbers of cells per direction");
-    s.cells[d] = static_cast<int>(cells[d]);
-  }
-  double total = 1;
-  for (int d = 0; d < s.dim; ++d) total *= s.cells[d];
-  if (total > 2e9 / 8) mesh.fail("cells", "fewer than 2.5e8 elements");
-  s.lower = read_point(mesh, "lower", s.dim, std::vector<double>(s.dim, 0.0));
-  s.upper = read_point(mesh, "upper", s.dim);
-  for (int d = 0; d < s.dim; ++d)
-    if (!(s.upper[d] > s.lower[d])) mesh.fail("upper", "upper > lower in every direction");
-  mesh.skip("regions");
+  known_keys(mesh, {"type", "cells", "lower", "upper", "regions", "file"});
+  const std::string mesh_type = mesh.get<std::string>("type", "box", config::one_of({"box", "gmsh"}));
   std::vector<Node> region_nodes;
-  if (mesh.has("regions")) region_nodes = mesh.list("regions");
+  std::shared_ptr<Mesh> file_mesh;
+  if (mesh_type == "gmsh") {
+    for (const char* k : {"cells", "lower", "upper", "regions"})
+      if (mesh.has(k)) mesh.fail(k, "no cells, lower, upper or regions with type: gmsh (the mesh file defines them)");
+    s.mesh_file = mesh.require<std::string>("file");
+    std::filesystem::path f(s.mesh_file);
+    if (f.is_relative() && !base_dir.empty()) f = std::filesystem::path(base_dir) / f;
+    try {
+      file_mesh = std::make_shared<Mesh>(read_gmsh(f.string()));
+    } catch (const MeshError& e) {
+      throw config::ConfigError(fmt::format("{}: {}", mesh.where("file"), e.what()));
+    }
+    s.mesh_file = f.string();
+    s.dim = file_mesh->dim;
+  } else {
+    if (mesh.has("file")) mesh.fail("file", "no file with type: box (or type: gmsh)");
+    auto cells = mesh.get_vector("cells", 2, 3);
+    s.dim = static_cast<int>(cells.size());
+    for (int d = 0; d < s.dim; ++d) {
+      if (cells[d] < 1 || cells[d] != std::floor(cells[d]) || cells[d] > 1e7)
+        mesh.fail("cells", "positive whole numbers of cells per direction");
+      s.cells[d] = static_cast<int>(cells[d]);
+    }
+    double total = 1;
+    for (int d = 0; d < s.dim; ++d) total *= s.cells[d];
+    if (total > 2e9 / 8) mesh.fail("cells", "fewer than 2.5e8 elements");
+    s.lower = read_point(mesh, "lower", s.dim, std::vector<double>(s.dim, 0.0));
+    s.upper = read_point(mesh, "upper", s.dim);
+    for (int d = 0; d < s.dim; ++d)
+      if (!(s.upper[d] > s.lower[d])) mesh.fail("upper", "upper > lower in every direction");
+    mesh.skip("regions");
+    if (mesh.has("regions")) region_nodes = mesh.list("regions");
+  }
   mesh.finish();
 
   auto blist = sn.list("blocks");
@@ -210,11 +240,42 @@ SolidScene read_solid_scene(Node& root) {
     s.regions.push_back(r);
   }
 
+  // Gmsh: every scene block names an element group of the file and every group has a block; the mesh is
+  // renumbered to the order of solid.blocks.
+  if (file_mesh) {
+    std::vector<int> block_of_group(file_mesh->block_names.size(), -1);
+    for (std::size_t b = 0; b < s.blocks.size(); ++b) {
+      const auto& names_in_file = file_mesh->block_names;
+      auto it = std::find(names_in_file.begin(), names_in_file.end(), s.blocks[b].name);
+      if (it == names_in_file.end()) {
+        std::string list;
+        for (const auto& g : names_in_file) list += (list.empty() ? "" : ", ") + g;
+        blist[b].fail("name", fmt::format("the name of a {} physical group in {} ({}), got '{}'",
+                                          s.dim == 2 ? "surface" : "volume", s.mesh_file, list, s.blocks[b].name));
+      }
+      block_of_group[it - names_in_file.begin()] = static_cast<int>(b);
+    }
+    for (std::size_t g = 0; g < block_of_group.size(); ++g)
+      if (block_of_group[g] < 0 && std::count(file_mesh->element_block.begin(), file_mesh->element_block.end(),
+                                              static_cast<int>(g)) > 0)
+        sn.fail("blocks", fmt::format("a block for every element group of {}: group '{}' has none", s.mesh_file,
+                                      file_mesh->block_names[g]));
+    for (int& b : file_mesh->element_block) b = block_of_group[b];
+    file_mesh->block_names.clear();
+    for (const auto& b : s.blocks) file_mesh->block_names.push_back(b.name);
+    finalize_mesh(*file_mesh);
+    s.file_mesh = file_mesh;
+  }
+
   std::set<std::string> sets;
-  const char* axes = "xyz";
-  for (int d = 0; d < s.dim; ++d) {
-    sets.insert(std::string(1, axes[d]) + "_lower");
-    sets.insert(std::string(1, axes[d]) + "_upper");
+  if (file_mesh) {
+    for (const auto& [name, faces] : file_mesh->face_sets) sets.insert(name);
+  } else {
+    const char* axes = "xyz";
+    for (int d = 0; d < s.dim; ++d) {
+      sets.insert(std::string(1, axes[d]) + "_lower");
+      sets.insert(std::string(1, axes[d]) + "_upper");
+    }
   }
   sn.skip("boundaries");
   if (sn.has("boundaries"))
@@ -282,8 +343,8 @@ SolidScene read_solid_scene(Node& root) {
 }
 
 namespace {
-SolidScene read_document(Node root) {
-  SolidScene s = read_solid_scene(root);
+SolidScene read_document(Node root, const std::string& base_dir) {
+  SolidScene s = read_solid_scene(root, base_dir);
   s.name = root.get<std::string>("name", "scene");
   root.get<std::string>("description", "");
   for (const char* other : {"fluid", "coupling", "launcher"}) root.skip(other);
@@ -293,11 +354,11 @@ SolidScene read_document(Node root) {
 }  // namespace
 
 SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides) {
-  return read_document(config::load_file(file, overrides));
+  return read_document(config::load_file(file, overrides), std::filesystem::path(file).parent_path().string());
 }
 
 SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides) {
-  return read_document(config::load_string(yaml_text, "<scene>", overrides));
+  return read_document(config::load_string(yaml_text, "<scene>", overrides), "");
 }
 
 }  // namespace cosim::solid

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/config/config.h"
 #include "solid_solver/materials/material.h"
+#include "solid_solver/mesh/mesh.h"
 
 namespace cosim::solid {
 
@@ -18,6 +20,9 @@ struct BlockSpec {
   bool has_pressure = false;
   double pressure = 0.0;                         // initial pressure [Pa] (sets the energy)
   std::array<double, 3> velocity{0, 0, 0};       // initial velocity [m/s]
+  std::array<double, 3> angular_velocity{0, 0, 0};  // initial spin about the block's centre of mass [rad/s]
+  bool rigid = false;                            // rigid body: no stress, EOS or hourglass work
+  bool has_eos = true;                           // false: a rigid block given without an eos
   std::array<double, 6> deviator{0, 0, 0, 0, 0, 0};  // initial deviatoric stress (xx,yy,zz,xy,yz,zx) [Pa]
 };
 
@@ -56,6 +61,10 @@ struct Numerics {
 struct SolidScene {
   std::string name = "scene";
   int dim = 3;
+  // Gmsh mesh (mesh.type: gmsh), read while the scene is read, its blocks already in solid.blocks order;
+  // null for the built-in box generator.
+  std::shared_ptr<const Mesh> file_mesh;
+  std::string mesh_file;
   std::array<int, 3> cells{1, 1, 1};
   std::array<double, 3> lower{0, 0, 0}, upper{1, 1, 1};
   std::vector<RegionSpec> regions;
@@ -71,7 +80,8 @@ struct SolidScene {
 };
 
 // Reads the `solid:` section of a scene; skips fluid, coupling and launcher. Throws config::ConfigError.
-SolidScene read_solid_scene(config::Node& root);
+// Relative mesh file names are resolved against base_dir (the scene file's directory).
+SolidScene read_solid_scene(config::Node& root, const std::string& base_dir = "");
 SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides = {});
 SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides = {});
 

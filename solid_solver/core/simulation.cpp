@@ -6,10 +6,17 @@
 #include <cmath>
 
 #include "solid_solver/forces/element_kernel.h"
+#include "solid_solver/mesh/element_faces.h"
 
 namespace cosim::solid {
 
 Mesh build_mesh(const SolidScene& s) {
+  if (s.file_mesh) {
+    for (std::size_t b = 0; b < s.blocks.size(); ++b)
+      if (s.file_mesh->block_range[b][0] == s.file_mesh->block_range[b][1])
+        throw std::runtime_error(fmt::format("block '{}' has no elements in {}", s.blocks[b].name, s.mesh_file));
+    return *s.file_mesh;
+  }
   Mesh m = make_box_mesh(s.dim, s.cells, s.lower, s.upper);
   m.block_names.clear();
   for (const auto& b : s.blocks) m.block_names.push_back(b.name);
@@ -60,12 +67,14 @@ void Simulation::setup() {
   st_.eps_p.assign(ne, 0.0);
   st_.fc.assign(static_cast<std::size_t>(ne) * N * D, 0.0);
 
-  // Element mass, energy, deviator; nodal mass (lumped: M/npe per corner) and velocity.
+  // Element mass, energy, deviator; nodal mass (lumped: M/npe per corner) and velocity
+  // v0 + omega x (x - x_cm) of the block (x_cm: the block's centre of mass).
   std::vector<double> vsum(st_.v.size(), 0.0), msum(nn, 0.0);
   for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
     const BlockSpec& bs = scene_.blocks[b];
     const double rho = bs.material.density;
     const double e0 = bs.has_pressure ? bs.material.energy_from_pressure(rho, bs.pressure) : bs.energy;
+    double cm[3] = {0, 0, 0}, mb = 0.0;
     for (int z = mesh_.block_range[b][0]; z < mesh_.block_range[b][1]; ++z) {
       double x[8][3] = {};
       const int* cn = &mesh_.conn[static_cast<std::size_t>(z) * N];
@@ -81,18 +90,29 @@ void Simulation::setup() {
           for (int d = 0; d < 3; ++d) x[a][d] = st_.x[static_cast<std::size_t>(cn[a]) * 3 + d];
         V = element_b_matrix(x, B3);
       }
-      if (!(V > 0.0)) {
-        const auto c = element_centroid(mesh_, st_.x, z);
+      const auto c = element_centroid(mesh_, st_.x, z);
+      if (!(V > 0.0))
         throw std::runtime_error(fmt::format("element {} of block '{}' near ({:.6g}, {:.6g}, {:.6g}) is inverted or "
                                              "degenerate (volume {:.6g})", z, bs.name, c[0], c[1], c[2], V));
-      }
       st_.vol[z] = V;
       st_.emass[z] = rho * V;
       st_.ie[z] = e0 * rho * V;
       for (int k = 0; k < 6; ++k) st_.s[static_cast<std::size_t>(z) * 6 + k] = bs.deviator[k];
+      mb += rho * V;
+      for (int d = 0; d < D; ++d) cm[d] += rho * V * c[d];
+    }
+    for (int d = 0; d < D; ++d) cm[d] /= mb;
+    const double* w = bs.angular_velocity.data();
+    for (int z = mesh_.block_range[b][0]; z < mesh_.block_range[b][1]; ++z) {
+      const int* cn = &mesh_.conn[static_cast<std::size_t>(z) * N];
+      const double mc = st_.emass[z] / N;
       for (int a = 0; a < N; ++a) {
-        msum[cn[a]] += rho * V / N;
-        for (int d = 0; d < D; ++d) vsum[static_cast<std::size_t>(cn[a]) * D + d] += rho * V / N * bs.velocity[d];
+        double r[3] = {0, 0, 0};
+        for (int d = 0; d < D; ++d) r[d] = st_.x[static_cast<std::size_t>(cn[a]) * D + d] - cm[d];
+        const double wxr[3] = {w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]};
+        msum[cn[a]] += mc;
+        for (int d = 0; d < D; ++d)
+          vsum[static_cast<std::size_t>(cn[a]) * D + d] += mc * (bs.velocity[d] + wxr[d]);
       }
     }
   }
@@ -139,7 +159,14 @@ void Simulation::setup() {
     }
     auto it = mesh_.node_sets.find(bc.set);
     if (it == mesh_.node_sets.end()) throw std::runtime_error("no node set '" + bc.set + "' in the mesh");
-    const int axis = bc.set[0] - 'x';
+    int axis = -1;
+    if (bc.kind == BcKind::Symmetry) {
+      const auto fs = mesh_.face_sets.find(bc.set);
+      if (fs != mesh_.face_sets.end()) axis = face_set_axis(mesh_, st_.x, fs->second);
+      if (axis < 0)
+        throw std::runtime_error(fmt::format("symmetry set '{}' is not one plane normal to x, y or z (only "
+                                             "axis-aligned symmetry planes are supported)", bc.set));
+    }
     for (int n : it->second) {
       for (int d = 0; d < D; ++d) {
         bool on = false;
@@ -158,6 +185,15 @@ void Simulation::setup() {
   for (int n = 0; n < nn; ++n)
     if (st_.bc_mask[n] & kBcLoaded) loaded_nodes_.push_back(n);
   apply_boundary_conditions();
+
+  // Rigid blocks: one rigid body each; their elements are skipped by the element pass (no stress, EOS,
+  // viscosity or hourglass work), their energy stays constant.
+  std::vector<int> rigid_owner(nn, -1);
+  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
+    if (!scene_.blocks[b].rigid) continue;
+    rigid_.push_back(make_rigid_body(mesh_, static_cast<int>(b), st_, rigid_owner));
+    for (int z = mesh_.block_range[b][0]; z < mesh_.block_range[b][1]; ++z) rigid_ie_ += st_.ie[z];
+  }
 
   // Initial element pass: stress, EOS, viscosity, corner forces and the stable step at t = 0.
   element_update(0.0);
@@ -180,42 +216,64 @@ void Simulation::apply_boundary_conditions() {
   }
 }
 
-// Pressure p on a face: force -p A n, split equally over its nodes (exact for planar faces).
+// Pressure p on a face: force -p A n (A n: mesh/element_faces.h), split equally over its nodes (exact for
+// planar faces).
 void Simulation::apply_pressure_loads() {
   const int D = mesh_.dim;
   for (int n : loaded_nodes_)
     for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(n) * D + d] = 0.0;
   const double* x = st_.x.data();
+  const int k = mesh_.face_nodes();
   for (const auto& L : loads_) {
     const double p = L.pressure * (L.ramp > 0 ? std::min(1.0, t_ / L.ramp) : 1.0);
     for (const auto& f : *L.faces) {
       double an[3];
-      if (D == 2) {
-        const double* a = x + 2 * f.nodes[0];
-        const double* b = x + 2 * f.nodes[1];
-        an[0] = b[1] - a[1];
-        an[1] = -(b[0] - a[0]);
-        for (int k = 0; k < 2; ++k)
-          for (int d = 0; d < 2; ++d) st_.fext[2 * f.nodes[k] + d] -= 0.5 * p * an[d];
-      } else {
-        const double* p1 = x + 3 * f.nodes[0];
-        const double* p2 = x + 3 * f.nodes[1];
-        const double* p3 = x + 3 * f.nodes[2];
-        const double* p4 = x + 3 * f.nodes[3];
-        const double d1[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
-        const double d2[3] = {p4[0] - p2[0], p4[1] - p2[1], p4[2] - p2[2]};
-        an[0] = 0.5 * (d1[1] * d2[2] - d1[2] * d2[1]);
-        an[1] = 0.5 * (d1[2] * d2[0] - d1[0] * d2[2]);
-        an[2] = 0.5 * (d1[0] * d2[1] - d1[1] * d2[0]);
-        for (int k = 0; k < 4; ++k)
-          for (int d = 0; d < 3; ++d) st_.fext[3 * static_cast<std::size_t>(f.nodes[k]) + d] -= 0.25 * p * an[d];
-      }
+      face_area_vector(D, x, f.nodes, an);
+      for (int q = 0; q < k; ++q)
+        for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(f.nodes[q]) * D + d] -= p / k * an[d];
     }
+  }
+  // Pressures from outside (the coupler), per exterior face.
+  for (std::size_t i = 0; i < face_p_.size(); ++i) {
+    std::array<int, 4> fn{-1, -1, -1, -1};
+    for (int q = 0; q < k; ++q) fn[q] = faces_.nodes[i * k + q];
+    double an[3];
+    face_area_vector(D, x, fn, an);
+    const double w = face_p_[i] / k;
+    for (int q = 0; q < k; ++q)
+      for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(fn[q]) * D + d] -= w * an[d];
   }
 }
 
+const BoundaryFaces& Simulation::boundary_faces() {
+  if (!faces_built_) {
+    faces_ = make_boundary_faces(mesh_);
+    faces_built_ = true;
+  }
+  std::vector<char> rigid(scene_.blocks.size(), 0);
+  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) rigid[b] = scene_.blocks[b].rigid ? 1 : 0;
+  update_boundary_faces(faces_, st_, rigid);
+  return faces_;
+}
+
+void Simulation::set_face_pressures(const std::vector<double>& p) {
+  if (!faces_built_) boundary_faces();
+  if (!p.empty() && static_cast<int>(p.size()) != faces_.count)
+    throw std::invalid_argument(fmt::format("set_face_pressures: {} values for {} exterior faces", p.size(),
+                                            faces_.count));
+  face_p_ = p;
+  if (p.empty())  // the loads of the scene (if any) are rebuilt every cycle
+    for (int n : loaded_nodes_)
+      for (int d = 0; d < mesh_.dim; ++d) st_.fext[static_cast<std::size_t>(n) * mesh_.dim + d] = 0.0;
+  // Mark the face nodes as loaded (their fext is rebuilt every cycle and enters the boundary work).
+  for (int n : faces_.nodes) st_.bc_mask[n] |= kBcLoaded;
+  loaded_nodes_.clear();
+  for (int n = 0; n < mesh_.num_nodes; ++n)
+    if (st_.bc_mask[n] & kBcLoaded) loaded_nodes_.push_back(n);
+}
+
 void Simulation::nodal_update(double dt) {
-  if (!loads_.empty()) apply_pressure_loads();
+  if (!loads_.empty() || !face_p_.empty()) apply_pressure_loads();
   const int D = mesh_.dim;
   const int nn = mesh_.num_nodes;
   const int* off = mesh_.node_corner_offset.data();
@@ -242,6 +300,7 @@ void Simulation::nodal_update(double dt) {
       for (int d = 0; d < D; ++d) F[d] += f[d];
     }
     const std::uint8_t m = mask[n];
+    if (m & kBcRigid) continue;  // moved with its rigid body below
     const double im = 1.0 / mass[n];
     const std::ptrdiff_t o = static_cast<std::ptrdiff_t>(n) * D;
     double vn[3], e_old = 0.0, e_new = 0.0, fw = 0.0;
@@ -260,6 +319,7 @@ void Simulation::nodal_update(double dt) {
     ke += 0.5 * mass[n] * e_new;
     if (m) wb += 0.5 * mass[n] * (e_new - e_old) - dt * fw;
   }
+  for (auto& rb : rigid_) advance_rigid_body(rb, mesh_, st_, dt, th, ke, wb);
   ke_ = ke;
   wb_ += wb;
 }
@@ -272,7 +332,9 @@ void Simulation::element_update(double dt) {
                     scene_.numerics.q_quadratic * scene_.numerics.q_quadratic, scene_.numerics.q_linear,
                     scene_.numerics.hourglass, 0.0, Strength{}};
   ElementPassResult R;
+  R.ie_sum = rigid_ie_;
   for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
+    if (scene_.blocks[b].rigid) continue;  // the skip path: no stress, EOS, viscosity or hourglass work
     const MaterialModel& mat = scene_.blocks[b].material;
     const int lo = mesh_.block_range[b][0], hi = mesh_.block_range[b][1];
     A.p_min = mat.p_min;

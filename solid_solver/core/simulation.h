@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "solid_solver/core/boundary_faces.h"
+#include "solid_solver/core/rigid_body.h"
 #include "solid_solver/core/scene.h"
 #include "solid_solver/core/state.h"
 #include "solid_solver/mesh/mesh.h"
@@ -43,6 +45,15 @@ class Simulation {
   State& state() { return st_; }
   const State& state() const { return st_; }
   EnergyBudget energy() const;
+  // Exterior boundary faces for the coupling protocol, refreshed from the current state (t^n; velocities
+  // v^{n-1/2}). The face list is built on the first call.
+  const BoundaryFaces& boundary_faces();
+  // Pressure per exterior face (boundary_faces() order) [Pa], applied from the next cycle on as the force
+  // -p A n on the current face geometry, split equally between the face's nodes, in addition to the scene's
+  // pressure boundaries; its work enters the boundary work. An empty vector removes it.
+  void set_face_pressures(const std::vector<double>& p);
+  // Rigid blocks (blocks[].rigid), in block order.
+  const std::vector<RigidBody>& rigid_bodies() const { return rigid_; }
   // Bytes of state per element (nodal arrays apportioned), for the benchmark report.
   double bytes_per_element() const;
 
@@ -62,6 +73,11 @@ class Simulation {
     double pressure, ramp;
   };
   std::vector<Load> loads_;
+  std::vector<RigidBody> rigid_;
+  BoundaryFaces faces_;
+  bool faces_built_ = false;
+  std::vector<double> face_p_;  // coupler pressures per exterior face [Pa] (empty: none)
+  double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
 };
 

@@ -14,8 +14,9 @@ class StateError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Node boundary-condition flags: bits 0..2 prescribe velocity component d; bit 3 marks external loads.
-enum : std::uint8_t { kBcLoaded = 8 };
+// Node boundary-condition flags: bits 0..2 prescribe velocity component d; bit 3 marks external loads;
+// bit 4 marks nodes of a rigid block (moved by the rigid-body update, core/rigid_body.h).
+enum : std::uint8_t { kBcLoaded = 8, kBcRigid = 16 };
 
 struct State {
   // nodes

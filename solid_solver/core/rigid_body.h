@@ -1,0 +1,50 @@
+// Rigid blocks (blocks[].rigid: true): the nodes of a rigid block move as one rigid body under the net force
+// and torque of the forces on them (corner forces of the neighbouring deformable elements, pressure loads,
+// coupler tractions). Its own elements do no stress, EOS, viscosity or hourglass work: they are skipped.
+// Leapfrog, staggered like the nodes (x at t^n; V, angular momentum L at t^{n-1/2}):
+//   V^{n+1/2} = V^{n-1/2} + dt F^n / M,      L^{n+1/2} = L^{n-1/2} + dt T^n   (T about the centre of mass),
+//   omega = I^{-1} L (I rotated with the body; 3D: I at the predicted mid-step orientation),
+//   Q^{n+1} = exp(dt [omega]x) Q^n (Rodrigues),  X^{n+1} = X^n + dt V^{n+1/2},  x_i = X + Q r0_i.
+// Node velocities are the chords (x_i^{n+1} - x_i^n)/dt, so the neighbouring elements see the exact motion,
+// and the body keeps its shape to round-off. Prescribed velocity components on any of its nodes (fixed,
+// symmetry, velocity boundaries) fix that translation component of the whole body and lock its rotation.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "solid_solver/core/state.h"
+#include "solid_solver/mesh/mesh.h"
+
+namespace cosim::solid {
+
+struct RigidBody {
+  int block = -1;
+  std::vector<int> nodes;      // every node of the block's elements
+  std::vector<double> r0;      // body-frame node positions about the centre of mass (3 per node) [m]
+  double mass = 0.0;           // sum of the lumped masses of its nodes [kg]
+  double I0[3][3] = {};        // body-frame inertia tensor about the centre of mass [kg m^2]
+  double Q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // orientation (body -> world)
+  double X[3] = {0, 0, 0};     // centre of mass at t^n [m]
+  double V[3] = {0, 0, 0};     // velocity at t^{n-1/2} [m/s]
+  double L[3] = {0, 0, 0};     // angular momentum about the centre of mass at t^{n-1/2} [kg m^2/s]
+  std::array<bool, 3> fixed{false, false, false};  // prescribed translation components
+  double fixed_value[3] = {0, 0, 0};               // their values [m/s]
+  double fixed_ramp = 0.0;                         // linear ramp time of the prescribed values [s]
+  bool rotation_locked = false;
+};
+
+// Builds the body of block b from the current nodal positions, masses and velocities (its node velocities
+// are replaced by the rigid-body field V + omega x r) and from the boundary-condition masks of its nodes.
+// Throws std::runtime_error when the block shares a node with another rigid block (rigid_owner >= 0) or
+// when its nodes carry conflicting prescribed velocities.
+RigidBody make_rigid_body(const Mesh& m, int b, State& st, std::vector<int>& rigid_owner);
+
+// One leapfrog step of the body (see the header comment). t_half = t^{n+1/2} for ramps. Adds the kinetic
+// energy of its nodes at t^{n+1/2} to ke and the work of loads and constraint reactions to wb.
+void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke, double& wb);
+
+// Kinetic energy of the body: 1/2 M V^2 + 1/2 L . omega [J] (for tests).
+double rigid_body_kinetic_energy(const RigidBody& rb, int dim);
+
+}  // namespace cosim::solid

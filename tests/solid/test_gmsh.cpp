@@ -1,0 +1,189 @@
+// Gmsh 4.1 ASCII reader: a hand-written 2D two-block mesh (tests/solid/data/two_blocks_2d.msh), a generated
+// 3D hexahedral strip, and bad files (unsupported element type, missing group, inverted and degenerate
+// elements, boundary element that is no element face): each error names the file:line and the element/group.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "solid_solver/mesh/element_faces.h"
+#include "solid_solver/mesh/gmsh_reader.h"
+#include "solid_test_util.h"
+
+using namespace cosim::solid;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kData = std::string(COSIM_SOURCE_DIR) + "/tests/solid/data/";
+
+// n x 1 x 1 hexahedra on [0, n] x [0, 1]^2: volume group "body", surface groups "x_min" and "x_max".
+// `edit` may change the element lines (index = element, 0-based) before they are written.
+std::string hex_strip(int n, const std::function<void(std::vector<std::array<int, 8>>&)>& edit = {}) {
+  auto tag = [&](int i, int j, int k) { return 1 + i + (n + 1) * (j + 2 * k); };
+  std::string s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n2 1 \"x_min\"\n2 2 \"x_max\"\n"
+                  "3 3 \"body\"\n$EndPhysicalNames\n$Entities\n0 0 2 1\n1 0 0 0 0 1 1 1 1 0\n"
+                  "2 0 0 0 0 1 1 1 2 0\n1 0 0 0 1 1 1 1 3 0\n$EndEntities\n";
+  const int nn = 4 * (n + 1);
+  s += fmt::format("$Nodes\n1 {} 1 {}\n3 1 0 {}\n", nn, nn, nn);
+  for (int t = 1; t <= nn; ++t) s += fmt::format("{}\n", t);
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i <= n; ++i) s += fmt::format("{} {} {}\n", i, j, k);
+  s += "$EndNodes\n";
+  std::vector<std::array<int, 8>> hex;
+  for (int i = 0; i < n; ++i)
+    hex.push_back({tag(i, 0, 0), tag(i + 1, 0, 0), tag(i + 1, 1, 0), tag(i, 1, 0), tag(i, 0, 1), tag(i + 1, 0, 1),
+                   tag(i + 1, 1, 1), tag(i, 1, 1)});
+  if (edit) edit(hex);
+  s += fmt::format("$Elements\n3 {} 1 {}\n2 1 3 1\n1 {} {} {} {}\n2 2 3 1\n2 {} {} {} {}\n3 1 5 {}\n", n + 2, n + 2,
+                   tag(0, 0, 0), tag(0, 1, 0), tag(0, 1, 1), tag(0, 0, 1), tag(n, 0, 0), tag(n, 0, 1), tag(n, 1, 1),
+                   tag(n, 1, 0), n);
+  for (int i = 0; i < n; ++i) {
+    s += std::to_string(i + 3);
+    for (int a = 0; a < 8; ++a) s += fmt::format(" {}", hex[i][a]);
+    s += "\n";
+  }
+  return s + "$EndElements\n";
+}
+
+std::string write_tmp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("solid_gmsh_" + name);
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    read_gmsh(path);
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string replace(std::string s, const std::string& a, const std::string& b) {
+  const auto p = s.find(a);
+  EXPECT_NE(p, std::string::npos) << a;
+  return s.replace(p, a.size(), b);
+}
+}  // namespace
+
+TEST(SolidGmsh, Reads2DBlocksAndBoundarySets) {
+  const Mesh m = read_gmsh(kData + "two_blocks_2d.msh");
+  EXPECT_EQ(m.dim, 2);
+  EXPECT_EQ(m.num_nodes, 6);
+  EXPECT_EQ(m.num_elements, 2);
+  ASSERT_EQ(m.block_names.size(), 2u);
+  EXPECT_EQ(m.block_names[0], "gas");
+  EXPECT_EQ(m.block_names[1], "steel");
+  EXPECT_EQ(m.element_block, (std::vector<int>{0, 1}));
+  ASSERT_EQ(m.face_sets.at("bottom").size(), 2u);
+  EXPECT_EQ(m.node_sets.at("bottom").size(), 3u);
+  // The left face belongs to element 0 and is ordered outward: normal -x.
+  const auto& f = m.face_sets.at("left").at(0);
+  EXPECT_EQ(f.element, 0);
+  const double* a = &m.x0[2 * f.nodes[0]];
+  const double* b = &m.x0[2 * f.nodes[1]];
+  EXPECT_LT(b[1] - a[1], 0.0);  // n = (dy, -dx) points to -x
+  EXPECT_EQ(b[0] - a[0], 0.0);
+}
+
+// A scene on the file mesh: blocks by group name (in any order), symmetry and pressure on file sets.
+TEST(SolidGmsh, SceneRunsOnFileMesh) {
+  SolidScene s = parse_solid_scene(fmt::format(R"(
+solid:
+  mesh: {{type: gmsh, file: {}}}
+  blocks:
+    - {{name: steel, material: steel}}
+    - {{name: gas, eos: {{type: ideal_gas, gamma: 1.4}}, density: 1.0, initial: {{pressure: 1.0e5}}}}
+  boundaries:
+    - {{set: bottom, type: symmetry}}
+    - {{set: left, type: symmetry}}
+    - {{set: right, type: pressure, value: 1.0e5}}
+  time: {{end: 1.0e-6}}
+)", kData + "two_blocks_2d.msh"));
+  EXPECT_EQ(s.dim, 2);
+  Simulation sim(s);
+  EXPECT_EQ(sim.mesh().block_names[0], "steel");
+  EXPECT_NEAR(sim.state().emass[sim.mesh().block_range[0][0]], 7810.0, 1e-9);
+  solid_test::run_to(sim, 1e-6);
+  const auto e = sim.energy();
+  EXPECT_NEAR(e.total() - e.boundary_work, 2.5e5, 1e-9 * 2.5e5);  // gas: p V / (gamma - 1) = 2.5e5 J
+  // A scene block that names no group of the file, and a group without a block.
+  auto err = [](const std::string& yaml) {
+    try {
+      parse_solid_scene(yaml);
+    } catch (const cosim::config::ConfigError& ex) {
+      return std::string(ex.what());
+    }
+    return std::string();
+  };
+  const std::string yaml = fmt::format(R"(
+solid:
+  mesh: {{type: gmsh, file: {}}}
+  blocks:
+    - {{name: gass, eos: {{type: ideal_gas, gamma: 1.4}}, density: 1.0}}
+    - {{name: steel, material: steel}}
+  time: {{end: 1.0}}
+)", kData + "two_blocks_2d.msh");
+  const std::string e1 = err(yaml);
+  EXPECT_NE(e1.find("'gass'"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("gas, steel"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("<scene>:5"), std::string::npos) << e1;
+  const std::string e2 = err(replace(yaml, "    - {name: gass, eos: {type: ideal_gas, gamma: 1.4}, density: 1.0}\n", ""));
+  EXPECT_NE(e2.find("group 'gas' has none"), std::string::npos) << e2;
+  const std::string e3 = err(replace(yaml, "two_blocks_2d.msh", "no_such_file.msh"));
+  EXPECT_NE(e3.find("cannot open"), std::string::npos) << e3;
+  EXPECT_NE(e3.find("solid.mesh.file"), std::string::npos) << e3;
+}
+
+TEST(SolidGmsh, Reads3DHexStrip) {
+  const std::string path = write_tmp("strip.msh", hex_strip(3));
+  const Mesh m = read_gmsh(path);
+  EXPECT_EQ(m.dim, 3);
+  EXPECT_EQ(m.num_elements, 3);
+  EXPECT_EQ(m.num_nodes, 16);
+  ASSERT_EQ(m.face_sets.at("x_max").size(), 1u);
+  EXPECT_EQ(m.face_sets.at("x_max")[0].element, 2);
+  EXPECT_EQ(m.node_sets.at("x_min").size(), 4u);
+  double an[3];
+  Mesh mm = m;
+  finalize_mesh(mm);
+  face_area_vector(3, mm.x0.data(), mm.face_sets.at("x_max")[0].nodes, an);
+  EXPECT_NEAR(an[0], 1.0, 1e-14);  // outward (+x), unit area
+}
+
+TEST(SolidGmsh, BadFilesNameElementGroupAndLine) {
+  const std::string good = read_text(kData + "two_blocks_2d.msh");
+  // Element line "5 1 2 5 4" is line 46 of the file, the left boundary line "1 1 4" line 39.
+  const std::string inv = error_of(write_tmp("inv.msh", replace(good, "5 1 2 5 4", "5 1 4 5 2")));
+  EXPECT_NE(inv.find("solid_gmsh_inv.msh:46: element 5 of group 'gas': inverted"), std::string::npos) << inv;
+  const std::string deg = error_of(write_tmp("deg.msh", replace(good, "5 1 2 5 4", "5 1 2 2 4")));
+  EXPECT_NE(deg.find(":46: element 5 of group 'gas': degenerate"), std::string::npos) << deg;
+  const std::string bow = error_of(write_tmp("bow.msh", replace(good, "5 1 2 5 4", "5 1 2 4 5")));
+  EXPECT_NE(bow.find("element 5 of group 'gas': inverted or self-intersecting"), std::string::npos) << bow;
+  const std::string tri = error_of(write_tmp("tri.msh", replace(good, "2 1 3 1\n5 1 2 5 4", "2 1 2 1\n5 1 2 5")));
+  EXPECT_NE(tri.find(":46: element 5: element type 2 (3-node triangle) is not supported"), std::string::npos) << tri;
+  const std::string nogroup = error_of(write_tmp("nogroup.msh", replace(good, "1 0 0 0 1 1 0 1 21 0", "1 0 0 0 1 1 0 0 0")));
+  EXPECT_NE(nogroup.find(":46: element 5 (surface 1) belongs to no physical group"), std::string::npos) << nogroup;
+  const std::string notface = error_of(write_tmp("notface.msh", replace(good, "1 1 4\n", "1 1 5\n")));
+  EXPECT_NE(notface.find(":39: boundary element 1 of group 'left' is not a face"), std::string::npos) << notface;
+  const std::string ver = error_of(write_tmp("ver.msh", replace(good, "4.1 0 8", "2.2 0 8")));
+  EXPECT_NE(ver.find(":2: MSH format version 2.2 is not supported"), std::string::npos) << ver;
+  const std::string trunc = error_of(write_tmp("trunc.msh", good.substr(0, good.find("$EndNodes"))));
+  EXPECT_NE(trunc.find("expected"), std::string::npos) << trunc;
+  // 3D: a left-handed hexahedron (top and bottom swapped).
+  const std::string hex = error_of(write_tmp("hex.msh", hex_strip(2, [](auto& h) {
+    std::rotate(h[1].begin(), h[1].begin() + 4, h[1].end());
+  })));
+  EXPECT_NE(hex.find("element 4 of group 'body': inverted (negative volume at every corner"), std::string::npos)
+      << hex;
+}
