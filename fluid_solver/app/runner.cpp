@@ -4,9 +4,6 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
-#include <atomic>
-#include <csignal>
-#include <cmath>
 
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
@@ -16,9 +13,6 @@
 namespace cosim::fluid {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
-void on_signal(int) { g_interrupted = true; }
-
 struct RunRecord {
   std::string status = "running", error;
   double wall = 0;
@@ -75,64 +69,17 @@ int run_fluid(const RunOptions& opt) {
   spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim,
                sim->interior_cells(), scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "fluid");
   RunRecord rec;
   rec.start_totals = totals_json(scene, sim->totals());
-  util::Progress progress(!opt.quiet);
-  int code = 0;
-  double t_last = 0.0;
-  long steps_last = 0;
-  double rate = 0.0;
-  try {
-    write_snapshot(series, *sim);
-    for (double t_out : scene.output_times) {
-      while (sim->time() < t_out * (1.0 - 1e-14) && sim->steps() < scene.max_steps) {
-        if (g_interrupted) throw std::runtime_error("interrupted");
-        double dt = sim->stable_dt();
-        const double remaining = t_out - sim->time();
-        if (dt >= remaining) dt = remaining;
-        else if (dt > 0.5 * remaining) dt = 0.5 * remaining;
-        if (!(dt > 0.0) || !std::isfinite(dt))
-          throw StateError(fmt::format("time step collapsed to {:g} at t={:.9g}", dt, sim->time()));
-        sim->advance(dt);
-        const double now = progress.elapsed();
-        if (now - t_last > 1.0) {
-          rate = static_cast<double>(sim->steps() - steps_last) * static_cast<double>(sim->interior_cells()) /
-                 (now - t_last);
-          t_last = now;
-          steps_last = sim->steps();
-        }
-        progress.update(sim->steps(), sim->time(), scene.t_end,
-                        fmt::format("dt={:.3g}  {:.3g} Mcell-updates/s", dt, rate * 1e-6));
-      }
-      write_snapshot(series, *sim);
-      if (sim->steps() >= scene.max_steps) {
-        spdlog::warn("stopped at max_steps = {} (t = {:.6g})", scene.max_steps, sim->time());
-        break;
-      }
-    }
-    rec.status = "completed";
-  } catch (const StateError& e) {
-    rec.status = "failed";
-    rec.error = e.what();
-    spdlog::error("{}", e.what());
-    code = 3;
-  } catch (const std::runtime_error& e) {
-    if (g_interrupted) {
-      rec.status = "interrupted";
-      spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim->time());
-      code = 130;
-    } else {
-      rec.status = "failed";
-      rec.error = e.what();
-      spdlog::error("{}", e.what());
-      code = 4;
-    }
-  }
-  progress.finish();
-  rec.wall = progress.elapsed();
+  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, 0.0,
+                              static_cast<double>(sim->interior_cells()), "Mcell-updates/s", opt.quiet};
+  const app::DriveResult res = app::drive(*sim, drive_opt, [&] { write_snapshot(series, *sim); });
+  rec.status = res.status;
+  rec.error = res.error;
+  rec.wall = res.wall;
+  const int code = res.code;
   try {
     write_summary(opt.out_dir, *sim, rec);
   } catch (const std::exception& e) {

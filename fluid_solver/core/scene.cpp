@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config/output_times.h"
 #include "common/eos/materials.h"
 
 namespace cosim::fluid {
@@ -329,20 +330,11 @@ FluidScene read_fluid_scene(Node& root) {
   init.finish();
 
   // output
-  if (auto out = f.optional_child("output")) {
-    double interval = out->get<double>("interval", 0.0, config::non_negative());
-    out->skip("times");
-    if (out->has("times")) s.output_times = out->get_vector("times", 1, 100000, std::nullopt, config::positive());
-    if (interval > 0)
-      for (int i = 1; i * interval < s.t_end * (1 - 1e-12); ++i) s.output_times.push_back(i * interval);
-    out->finish();
+  {
+    auto out = f.optional_child("output");
+    s.output_times = config::read_output_times(out ? &*out : nullptr, s.t_end);
+    if (out) out->finish();
   }
-  s.output_times.push_back(s.t_end);
-  std::sort(s.output_times.begin(), s.output_times.end());
-  s.output_times.erase(std::remove_if(s.output_times.begin(), s.output_times.end(),
-                                      [&](double t) { return t > s.t_end; }),
-                       s.output_times.end());
-  s.output_times.erase(std::unique(s.output_times.begin(), s.output_times.end()), s.output_times.end());
 
   s.threads = f.get<int>("threads", 0, config::int_at_least(0));
   f.finish();

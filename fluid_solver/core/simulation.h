@@ -3,6 +3,8 @@
 // per time step, never per cell.
 #pragma once
 
+#include "common/app/run_driver.h"
+
 #include <array>
 #include <memory>
 #include <stdexcept>
@@ -14,9 +16,9 @@
 namespace cosim::fluid {
 
 // Thrown when a state cannot be kept admissible (negative density, p + pinf <= 0, alpha outside (0,1)).
-class StateError : public std::runtime_error {
+class StateError : public app::NumericalError {
  public:
-  using std::runtime_error::runtime_error;
+  using app::NumericalError::NumericalError;
 };
 
 // Interior cell-centred fields of one phase, i fastest. velocity holds 3 components per cell.

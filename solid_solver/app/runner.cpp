@@ -17,9 +17,6 @@
 namespace cosim::solid {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
-void on_signal(int) { g_interrupted = true; }
-
 struct RunRecord {
   std::string status = "running", error;
   double wall = 0;
@@ -91,63 +88,19 @@ int run_solid(const RunOptions& opt) {
   spdlog::info("{}: {}D, {} elements, {} nodes, {} block(s), {} thread(s)", scene.name, scene.dim,
                sim->mesh().num_elements, sim->mesh().num_nodes, scene.blocks.size(), omp_get_max_threads());
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "solid");
   RunRecord rec;
   rec.start = sim->energy();
-  util::Progress progress(!opt.quiet);
-  int code = 0;
-  double t_last = 0.0, rate = 0.0;
-  long steps_last = 0;
-  try {
+  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, scene.numerics.dt_min,
+                              static_cast<double>(sim->mesh().num_elements), "Mzone-cycles/s", opt.quiet};
+  const app::DriveResult res = app::drive(*sim, drive_opt, [&] {
     if (scene.write_snapshots) write_snapshot(series, *sim);
-    for (double t_out : scene.output_times) {
-      while (sim->time() < t_out * (1.0 - 1e-14) && sim->steps() < scene.max_steps) {
-        if (g_interrupted) throw std::runtime_error("interrupted");
-        double dt = sim->stable_dt();
-        const double remaining = t_out - sim->time();
-        if (dt >= remaining) dt = remaining;
-        else if (dt > 0.5 * remaining) dt = 0.5 * remaining;
-        if (!(dt > 0.0) || !std::isfinite(dt) || dt < scene.numerics.dt_min)
-          throw StateError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim->time(),
-                                       sim->steps()));
-        sim->advance(dt);
-        const double now = progress.elapsed();
-        if (now - t_last > 1.0) {
-          rate = static_cast<double>(sim->steps() - steps_last) * sim->mesh().num_elements / (now - t_last);
-          t_last = now;
-          steps_last = sim->steps();
-        }
-        progress.update(sim->steps(), sim->time(), scene.t_end,
-                        fmt::format("dt={:.3g}  {:.3g} Mzone-cycles/s", dt, rate * 1e-6));
-      }
-      if (scene.write_snapshots) write_snapshot(series, *sim);
-      if (sim->steps() >= scene.max_steps) {
-        spdlog::warn("stopped at max_steps = {} (t = {:.6g})", scene.max_steps, sim->time());
-        break;
-      }
-    }
-    rec.status = "completed";
-  } catch (const StateError& e) {
-    rec.status = "failed";
-    rec.error = e.what();
-    spdlog::error("{}", e.what());
-    code = 3;
-  } catch (const std::runtime_error& e) {
-    if (g_interrupted) {
-      rec.status = "interrupted";
-      spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim->time());
-      code = 130;
-    } else {
-      rec.status = "failed";
-      rec.error = e.what();
-      spdlog::error("{}", e.what());
-      code = 4;
-    }
-  }
-  progress.finish();
-  rec.wall = progress.elapsed();
+  });
+  rec.status = res.status;
+  rec.error = res.error;
+  rec.wall = res.wall;
+  const int code = res.code;
   try {
     write_summary(opt.out_dir, *sim, rec);
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <set>
 
+#include "common/config/output_times.h"
 #include "common/eos/materials.h"
 #include "solid_solver/mesh/gmsh_reader.h"
 
@@ -321,21 +322,14 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
                                [](const long& v) { return v >= 1 ? std::string() : std::string("an integer >= 1"); });
   time.finish();
 
-  if (auto out = sn.optional_child("output")) {
-    const double interval = out->get<double>("interval", 0.0, config::non_negative());
-    out->skip("times");
-    if (out->has("times")) s.output_times = out->get_vector("times", 1, 100000, std::nullopt, config::positive());
-    if (interval > 0)
-      for (int i = 1; i * interval < s.t_end * (1 - 1e-12); ++i) s.output_times.push_back(i * interval);
-    s.write_snapshots = out->get<bool>("snapshots", true);
-    out->finish();
+  {
+    auto out = sn.optional_child("output");
+    s.output_times = config::read_output_times(out ? &*out : nullptr, s.t_end);
+    if (out) {
+      s.write_snapshots = out->get<bool>("snapshots", true);
+      out->finish();
+    }
   }
-  s.output_times.push_back(s.t_end);
-  std::sort(s.output_times.begin(), s.output_times.end());
-  s.output_times.erase(std::remove_if(s.output_times.begin(), s.output_times.end(),
-                                      [&](double t) { return t > s.t_end; }),
-                       s.output_times.end());
-  s.output_times.erase(std::unique(s.output_times.begin(), s.output_times.end()), s.output_times.end());
 
   s.threads = sn.get<int>("threads", 0, config::int_at_least(0));
   sn.finish();

@@ -2,6 +2,8 @@
 // element tensors per element (6 stress components, npe*dim corner forces).
 #pragma once
 
+#include "common/app/run_driver.h"
+
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -9,9 +11,9 @@
 namespace cosim::solid {
 
 // A numerical failure (inverted element, non-finite state, time step collapse): exit code 3.
-class StateError : public std::runtime_error {
+class StateError : public app::NumericalError {
  public:
-  using std::runtime_error::runtime_error;
+  using app::NumericalError::NumericalError;
 };
 
 // Node boundary-condition flags: bits 0..2 prescribe velocity component d; bit 3 marks external loads;

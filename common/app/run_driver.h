@@ -1,0 +1,96 @@
+// The time loop both standalone solvers share: CFL steps up to each output time (the last step
+// of an interval is split so no step is tiny), a snapshot at each output time, a progress line,
+// and the mapping of failures to exit codes (3 numerical, 4 I/O or other, 130 interrupted).
+#pragma once
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/util/progress.h"
+
+namespace cosim::app {
+
+// Base of the solvers' "the state cannot be kept admissible" errors (exit code 3).
+class NumericalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// SIGINT/SIGTERM set a flag that drive() checks between steps.
+void install_interrupt_handlers();
+bool interrupted();
+
+struct DriveOptions {
+  std::vector<double> output_times;  // sorted, last = t_end
+  double t_end = 0;
+  long max_steps = 0;
+  double dt_min = 0;           // a smaller step is a numerical failure
+  double work_per_step = 1;    // cells or elements, for the rate on the progress line
+  std::string rate_unit;       // e.g. "Mcell-updates/s"
+  bool quiet = false;
+};
+
+struct DriveResult {
+  std::string status = "completed";  // completed | failed | interrupted
+  std::string error;
+  int code = 0;
+  double wall = 0;
+};
+
+// Sim provides stable_dt(), advance(dt), time(), steps(); snapshot() writes one output.
+template <class Sim, class Snapshot>
+DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
+  DriveResult r;
+  util::Progress progress(!o.quiet);
+  double t_last = 0.0, rate = 0.0;
+  long steps_last = sim.steps();
+  try {
+    snapshot();
+    for (double t_out : o.output_times) {
+      while (sim.time() < t_out * (1.0 - 1e-14) && sim.steps() < o.max_steps) {
+        if (interrupted()) throw std::runtime_error("interrupted");
+        double dt = sim.stable_dt();
+        const double remaining = t_out - sim.time();
+        if (dt >= remaining) dt = remaining;
+        else if (dt > 0.5 * remaining) dt = 0.5 * remaining;  // avoid a tiny last step
+        if (!(dt > 0.0) || !std::isfinite(dt) || dt < o.dt_min)
+          throw NumericalError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim.time(),
+                                           sim.steps()));
+        sim.advance(dt);
+        const double now = progress.elapsed();
+        if (now - t_last > 1.0) {
+          rate = static_cast<double>(sim.steps() - steps_last) * o.work_per_step / (now - t_last);
+          t_last = now;
+          steps_last = sim.steps();
+        }
+        progress.update(sim.steps(), sim.time(), o.t_end, fmt::format("dt={:.3g}  {:.3g} {}", dt, rate * 1e-6, o.rate_unit));
+      }
+      snapshot();
+      if (sim.steps() >= o.max_steps) {
+        spdlog::warn("stopped at max_steps = {} (t = {:.6g})", o.max_steps, sim.time());
+        break;
+      }
+    }
+  } catch (const NumericalError& e) {
+    r = {"failed", e.what(), 3, 0};
+    spdlog::error("{}", e.what());
+  } catch (const std::runtime_error& e) {
+    if (interrupted()) {
+      r = {"interrupted", "", 130, 0};
+      spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim.time());
+    } else {
+      r = {"failed", e.what(), 4, 0};
+      spdlog::error("{}", e.what());
+    }
+  }
+  progress.finish();
+  r.wall = progress.elapsed();
+  return r;
+}
+
+}  // namespace cosim::app
