@@ -52,12 +52,7 @@ int run_fluid(const RunOptions& opt) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(opt.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
-    spdlog::error("--out {}: cannot create the output directory ({})", opt.out_dir.string(), ec.message());
-    return 4;
-  }
+  if (!app::make_output_directory(opt.out_dir)) return 4;
 
   std::unique_ptr<FluidSimulation> sim;
   try {

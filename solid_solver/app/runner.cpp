@@ -69,12 +69,7 @@ int run_solid(const RunOptions& opt) {
     return 2;
   }
   if (scene.threads > 0) omp_set_num_threads(scene.threads);
-  std::error_code ec;
-  std::filesystem::create_directories(opt.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(opt.out_dir)) {
-    spdlog::error("--out {}: cannot create the output directory ({})", opt.out_dir.string(), ec.message());
-    return 4;
-  }
+  if (!app::make_output_directory(opt.out_dir)) return 4;
   std::unique_ptr<Simulation> sim;
   try {
     sim = std::make_unique<Simulation>(scene);

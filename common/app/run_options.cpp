@@ -1,0 +1,39 @@
+#include "common/app/run_options.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+namespace cosim::app {
+
+std::optional<int> parse_command_line(int argc, char** argv, const std::string& name, const std::string& description,
+                                      RunOptions& opt) {
+  CLI::App app{name + ": " + description};
+  app.add_option("scene", opt.scene_file, "scene file (YAML)")->required();
+  app.add_option("--out", opt.out_dir, "output directory (created if missing)")->required();
+  app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");
+  app.add_flag("--quiet,-q", opt.quiet, "no progress line");
+  app.add_option("--threads", opt.threads, "OpenMP threads (default: scene value or all cores)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  spdlog::set_default_logger(spdlog::stderr_color_mt(name));  // stdout stays free for data
+  spdlog::set_pattern("[" + name + "] %^%l%$: %v");
+  if (opt.quiet) spdlog::set_level(spdlog::level::warn);
+  return std::nullopt;
+}
+
+bool make_output_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    spdlog::error("--out {}: cannot create the output directory ({})", dir.string(), ec.message());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cosim::app

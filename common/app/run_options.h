@@ -1,0 +1,28 @@
+// Command line of a standalone solver run and the steps every run starts with.
+//   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N]
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cosim::app {
+
+struct RunOptions {
+  std::string scene_file;
+  std::filesystem::path out_dir;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+  int threads = 0;  // 0: scene value / OpenMP default
+};
+
+// Parses the command line and sets up logging on stderr as "[name] level: message". Returns an exit
+// code when the process should stop now (--help: 0, bad arguments: 2), nothing otherwise.
+std::optional<int> parse_command_line(int argc, char** argv, const std::string& name, const std::string& description,
+                                      RunOptions& opt);
+
+// Creates the output directory; logs and returns false when that is impossible.
+bool make_output_directory(const std::filesystem::path& dir);
+
+}  // namespace cosim::app
