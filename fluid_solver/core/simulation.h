@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "fluid_solver/core/embedded_state.h"
 #include "fluid_solver/core/scene.h"
 
 namespace cosim::fluid {
@@ -46,6 +47,10 @@ class FluidSimulation {
   virtual std::vector<PhaseTotals> totals() const = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
+  // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state
+  // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
+  virtual void set_embedded(EmbeddedState state, bool second_order) = 0;
+  virtual const EmbeddedState& embedded() const = 0;
 };
 
 std::unique_ptr<FluidSimulation> make_simulation(const FluidScene& scene);

@@ -16,6 +16,7 @@
 
 #include "fluid_solver/core/boundary.h"
 #include "fluid_solver/core/dem_face.h"
+#include "fluid_solver/core/ghost_fill.h"
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/initial_state.h"
 #include "fluid_solver/core/layout.h"
@@ -60,6 +61,16 @@ class Solver final : public FluidSimulation {
     return b;
   }
 
+  void set_embedded(EmbeddedState state, bool second_order) override {
+    emb_ = std::move(state);
+    wall_second_order_ = second_order;
+    for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
+      std::sort(faces.begin(), faces.end(), [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
+    if (emb_.active && emb_.kind.size() != g_.total)
+      throw std::invalid_argument("embedded state: kind array does not match the grid");
+  }
+  const EmbeddedState& embedded() const override { return emb_; }
+
   double stable_dt() override {
     compute_primitives(U_);
     double smax = 0.0;
@@ -76,6 +87,11 @@ class Solver final : public FluidSimulation {
         }
       }
     }, smax);
+    if (emb_.active) {  // a moving body must not cross more than a CFL fraction of a cell per step
+      double w = 0;
+      for (int d = 0; d < DIM; ++d) w += emb_.max_wall_speed / g_.dx[d];
+      smax = std::max(smax, w);
+    }
     return scene_.cfl / smax;
   }
 
@@ -90,6 +106,7 @@ class Solver final : public FluidSimulation {
       stage(dt, 1.0 / 3.0, 2.0 / 3.0);
     }
     if constexpr (NP == 2) exchange_sources(dt);
+    if (emb_.active) store_ghost_states();
     t_ += dt;
     ++steps_;
     primitives_valid_ = false;
@@ -232,7 +249,9 @@ class Solver final : public FluidSimulation {
     compute_primitives(U_);
     primitives_valid_ = false;
     bc_.fill(W_);
+    if (emb_.active) fill_ghost_cells<DIM, NP>(emb_, W_);
     residual();
+    if (emb_.active) freeze_non_flow_cells();
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
@@ -262,6 +281,89 @@ class Solver final : public FluidSimulation {
       }
     }, dummy);
   }
+
+  // Ghost, solid-cut and solid cells are not advanced by the flow equations: their residual is
+  // zeroed, so every Runge-Kutta stage leaves them unchanged (their states come from step 3).
+  void freeze_non_flow_cells() {
+    const std::uint8_t* kind = emb_.kind.data();
+    double dummy = 0;
+    for_each_row([&](std::size_t base, int len, double&) {
+      for (int v = 0; v < Lay::kCons; ++v) {
+        double* r = R_.var(v) + base;
+        for (int i = 0; i < len; ++i) r[i] = is_flow_cell(kind[base + i]) ? r[i] : 0.0;
+      }
+    }, dummy);
+  }
+
+  // After a step, the ghost and solid-cut cells keep the conservative form of their image-point
+  // states, so a cell the moving body uncovers is valid at once.
+  void store_ghost_states() {
+    for (const GhostRecord& gr : emb_.ghosts) {
+      const std::size_t c = gr.cell;
+      double a0 = 1.0;
+      if constexpr (NP == 2) {
+        a0 = W_.var(Lay::palpha)[c];
+        U_.var(Lay::alpha)[c] = a0;
+      }
+      for (int k = 0; k < NP; ++k) {
+        const double a = k == 0 ? a0 : 1.0 - a0;
+        const double rho = W_.var(Lay::rho(k))[c], p = W_.var(Lay::pres(k))[c];
+        double q = 0;
+        U_.var(Lay::mass(k))[c] = a * rho;
+        for (int d = 0; d < DIM; ++d) {
+          const double u = W_.var(Lay::vel(k, d))[c];
+          U_.var(Lay::mom(k, d))[c] = a * rho * u;
+          q += u * u;
+        }
+        U_.var(Lay::energy(k))[c] = a * (eos_[k].rho_e(rho, p) + 0.5 * rho * q);
+      }
+    }
+  }
+
+  // Paper steps 5-6 on the reconstructed edge states of one face row: at every face between a
+  // flow cell and a ghost/solid-cut cell, the solid-side state becomes the mirror of the flow-side
+  // state about the interface moving with u*: (alpha, rho, u - 2 ((u - u*).n) n, p) per phase, so
+  // that the face Riemann problem has its contact exactly at u* (numerics.md 5.4). u*.n is the
+  // interface velocity (first order) or its d-weighted extrapolation to the face (eqs. 23-26).
+  template <int D>
+  void mirror_wall_faces(std::size_t base, int len, double* left_edges, int left_off, double* right_edges,
+                         int right_off) const {
+    const auto& faces = emb_.faces[D];
+    auto it = std::lower_bound(faces.begin(), faces.end(), base,
+                               [](const WallFace& f, std::size_t b) { return high_cell(f) < b; });
+    const std::size_t len_e = edge_row_len();
+    for (; it != faces.end() && high_cell(*it) < base + static_cast<std::size_t>(len); ++it) {
+      const WallFace& wf = *it;
+      const int f = static_cast<int>(high_cell(wf) - base);
+      // Flow side: hi edge of the low cell or lo edge of the high cell; the solid side gets the mirror.
+      const double* from = wf.solid_on_high_side ? left_edges + Lay::kPrim * len_e + f + left_off
+                                                 : right_edges + f + right_off;
+      double* to = wf.solid_on_high_side ? right_edges + f + right_off
+                                         : left_edges + Lay::kPrim * len_e + f + left_off;
+      for (int v = 0; v < Lay::kPrim; ++v) to[v * len_e] = from[v * len_e];
+      for (int k = 0; k < NP; ++k) {
+        double un = 0, uIn = 0;
+        for (int d = 0; d < DIM; ++d) {
+          un += from[Lay::vel(k, d) * len_e] * wf.normal[d];
+          uIn += wf.wall_velocity[d] * wf.normal[d];
+        }
+        double ustar = uIn;
+        if (wall_second_order_) {  // eqs. 23, 25, 26 with the minmod limiter
+          double u1 = 0, u2 = 0;
+          for (int d = 0; d < DIM; ++d) {
+            u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
+            u2 += W_.var(Lay::vel(k, d))[wf.fluid_cell2] * wf.normal[d];
+          }
+          const double s = (uIn - u1) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u2);
+          const double s2 = u1 - u2;
+          const double lim = s * s2 > 0.0 ? (std::abs(s) < std::abs(s2) ? s : s2) : 0.0;
+          ustar = uIn + (0.5 - wf.d) * lim;
+        }
+        for (int d = 0; d < DIM; ++d) to[Lay::vel(k, d) * len_e] -= 2.0 * (un - ustar) * wf.normal[d];
+      }
+    }
+  }
+  static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
 
   // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
   // (same operators as relax_velocity / relax_pressure_kernel, numerics.md 2.5).
@@ -399,6 +501,7 @@ class Solver final : public FluidSimulation {
         const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
         // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
         compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+        if (emb_.active) mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
         compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
         apply_right<D, true>(sc.faces, flen, base, 0, n0, inv_dx);
         apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
@@ -421,6 +524,7 @@ class Solver final : public FluidSimulation {
         for (int layer = a; layer <= b; ++layer) {
           const std::size_t base = row_base(layer);
           compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+          if (emb_.active) mirror_wall_faces<D>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0);
           compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
           if (layer < b) apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
           if (layer > a) apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
@@ -674,6 +778,8 @@ class Solver final : public FluidSimulation {
   double t_ = 0.0;
   long steps_ = 0;
   bool primitives_valid_ = false;
+  EmbeddedState emb_;
+  bool wall_second_order_ = true;
 };
 
 }  // namespace cosim::fluid

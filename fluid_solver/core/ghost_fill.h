@@ -1,0 +1,32 @@
+// Ghost and solid-cut cells from image points (paper section 8, step 3; numerics.md 5.3): every
+// phase's density, pressure and volume fraction are interpolated at the image point; the velocity
+// keeps the interpolated tangential part and its normal part relative to the wall is extrapolated
+// linearly through the wall (u_G,n - u_w,n = -d_G/(L - d_G) (u_IP,n - u_w,n); the mirror image
+// point L = 2 d_G gives the reflection 2 u_w,n - u_IP,n), per phase.
+#pragma once
+
+#include "fluid_solver/core/embedded_state.h"
+#include "fluid_solver/core/layout.h"
+
+namespace cosim::fluid {
+
+template <int DIM, int NP>
+void fill_ghost_cells(const EmbeddedState& e, FieldArray& W) {
+  using Lay = Layout<DIM, NP>;
+  for (const GhostRecord& g : e.ghosts) {
+    if (g.stencil_size == 0) continue;  // no flow cell near the image point: keep the last state
+    double v[Lay::kPrim] = {};
+    for (int s = 0; s < g.stencil_size; ++s)
+      for (int q = 0; q < Lay::kPrim; ++q) v[q] += g.weights[s] * W.var(q)[g.stencil[s]];
+    const double L = g.image_distance, dG = g.distance;
+    const double factor = L > dG ? L / (L - dG) : 2.0;  // 1 + d_G / (L - d_G)
+    for (int k = 0; k < NP; ++k) {
+      double un = 0;
+      for (int d = 0; d < DIM; ++d) un += (v[Lay::vel(k, d)] - g.wall_velocity[d]) * g.normal[d];
+      for (int d = 0; d < DIM; ++d) v[Lay::vel(k, d)] -= factor * un * g.normal[d];
+    }
+    for (int q = 0; q < Lay::kPrim; ++q) W.var(q)[g.cell] = v[q];
+  }
+}
+
+}  // namespace cosim::fluid
