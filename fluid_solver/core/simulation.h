@@ -44,6 +44,7 @@ class FluidSimulation {
   // One full time step of size dt (all Runge-Kutta stages, relaxation and exchange sources).
   virtual void advance(double dt) = 0;
   virtual PhaseFields phase_fields(int phase) const = 0;
+  // Mass, momentum and energy of each phase over the flow cells (fluid and fluid-cut).
   virtual std::vector<PhaseTotals> totals() const = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
@@ -51,6 +52,8 @@ class FluidSimulation {
   // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
   virtual void set_embedded(EmbeddedState state, bool second_order) = 0;
   virtual const EmbeddedState& embedded() const = 0;
+  // CellKind of every interior cell (i fastest) as numbers, for output.
+  virtual std::vector<double> embedded_categories() const = 0;
 };
 
 std::unique_ptr<FluidSimulation> make_simulation(const FluidScene& scene);

@@ -70,6 +70,14 @@ class Solver final : public FluidSimulation {
       throw std::invalid_argument("embedded state: kind array does not match the grid");
   }
   const EmbeddedState& embedded() const override { return emb_; }
+  std::vector<double> embedded_categories() const override {
+    std::vector<double> out;
+    out.reserve(g_.interior_count());
+    for (int k = 0; k < g_.n[2]; ++k)
+      for (int j = 0; j < g_.n[1]; ++j)
+        for (int i = 0; i < g_.n[0]; ++i) out.push_back(emb_.active ? emb_.kind[g_.index(i, j, k)] : 0.0);
+    return out;
+  }
 
   double stable_dt() override {
     compute_primitives(U_);
@@ -151,6 +159,7 @@ class Solver final : public FluidSimulation {
         for (int j = 0; j < g_.n[1]; ++j)
           for (int i = 0; i < g_.n[0]; ++i) {
             const std::size_t c = g_.index(i, j, kk);
+            if (emb_.active && !is_flow_cell(emb_.kind[c])) continue;  // the fluid domain only
             out[k].mass += U_.var(Lay::mass(k))[c];
             for (int d = 0; d < DIM; ++d) out[k].momentum[d] += U_.var(Lay::mom(k, d))[c];
             out[k].energy += U_.var(Lay::energy(k))[c];

@@ -35,6 +35,11 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
     views.push_back({"mixture_velocity", mvel.data(), 3, io::Center::Cell});
     views.push_back({"mixture_pressure", mp.data(), 1, io::Center::Cell});
   }
+  std::vector<double> kind;
+  if (sim.embedded().active) {  // cell categories of paper Table 1 (0 fluid .. 4 solid), for inspection
+    kind = sim.embedded_categories();
+    views.push_back({"embedded_category", kind.data(), 1, io::Center::Cell});
+  }
   io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
   series.write(sim.time(), sim.steps(), g, views);
