@@ -198,6 +198,39 @@ Profile read_profile(Node& n, int dim) {
   return p;
 }
 
+EmbeddedBody read_body(Node& n, int dim) {
+  EmbeddedBody b;
+  const std::string shape =
+      n.require<std::string>("shape", config::one_of({"box", "circle", "sphere", "polygon", "step"}));
+  if ((shape == "circle" || shape == "polygon") && dim != 2) n.fail("shape", shape + " needs a 2D mesh");
+  if (shape == "sphere" && dim != 3) n.fail("shape", "sphere needs a 3D mesh");
+  if (dim == 1) n.fail("shape", "embedded bodies in a 2D or 3D mesh");
+  if (shape == "box" || shape == "step") {
+    b.shape = shape == "box" ? EmbeddedBody::Shape::Box : EmbeddedBody::Shape::Step;
+    b.lower = read_point(n, "lower", dim);
+    b.upper = read_point(n, "upper", dim);
+    for (int d = 0; d < dim; ++d)
+      if (!(b.upper[d] > b.lower[d])) n.fail("upper", "upper > lower in every direction");
+    if (shape == "box" && dim == 2) b.rotation_deg = n.get<double>("rotation", 0.0, config::in_range(-360, 360));
+  } else if (shape == "circle" || shape == "sphere") {
+    b.shape = shape == "circle" ? EmbeddedBody::Shape::Circle : EmbeddedBody::Shape::Sphere;
+    b.center = read_point(n, "center", dim);
+    b.radius = n.require<double>("radius", config::positive());
+    b.segments = n.get<int>("segments", shape == "circle" ? 128 : 3, config::int_at_least(shape == "circle" ? 8 : 0));
+  } else {
+    b.shape = EmbeddedBody::Shape::Polygon;
+    for (auto& v : n.list("vertices")) {
+      auto p = v.elements();
+      if (p.size() != 2) n.fail("vertices", "a list of [x, y] points");
+      b.vertices.push_back({p[0].as<double>(), p[1].as<double>()});
+    }
+    if (b.vertices.size() < 3) n.fail("vertices", "at least 3 vertices");
+  }
+  b.velocity = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0));
+  n.finish();
+  return b;
+}
+
 }  // namespace
 
 bool Region::contains(const std::array<double, 3>& x, int dim) const {
@@ -289,6 +322,17 @@ FluidScene read_fluid_scene(Node& root) {
       bool p1 = s.boundaries[d][1].kind == BoundaryKind::Periodic;
       if (p0 != p1) bn->fail(kAxes[d] + "_upper", "periodic on both sides of an axis or on neither");
     }
+  }
+
+  // embedded bodies (issue 4)
+  if (auto em = f.optional_child("embedded")) {
+    const int order = em->get<int>("order", 2, [](const int& v) {
+      return v == 1 || v == 2 ? std::string() : std::string("1 (ghost cells only) or 2 (plus face states)");
+    });
+    s.embedded.second_order = order == 2;
+    s.embedded.band = em->get<double>("band", 3.0, config::in_range(2.0, 50.0));
+    for (auto& bn : em->list("bodies")) s.embedded.bodies.push_back(read_body(bn, s.dim));
+    em->finish();
   }
 
   // exchange

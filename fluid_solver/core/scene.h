@@ -71,6 +71,24 @@ struct Exchange {
   double alpha_min = 1e-8;          // volume-fraction floor
 };
 
+// A body embedded in the background mesh (issue 4): a closed surface with a prescribed rigid velocity.
+struct EmbeddedBody {
+  enum class Shape { Box, Circle, Sphere, Polygon, Step } shape = Shape::Box;
+  std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0};  // box / step corners [m]
+  std::array<double, 3> center{0, 0, 0};                 // circle / sphere [m]
+  double radius = 0;                                     // [m]
+  double rotation_deg = 0;                               // box / polygon rotation about z (2D) [deg]
+  int segments = 64;                                     // circle segments / sphere refinement
+  std::vector<std::array<double, 2>> vertices;           // polygon, counter-clockwise [m]
+  std::array<double, 3> velocity{0, 0, 0};               // rigid velocity [m/s]
+};
+
+struct EmbeddedSettings {
+  bool second_order = true;  // paper steps 5-6 (face states) on top of the ghost cells
+  double band = 3.0;         // narrow-band half-width [cells]
+  std::vector<EmbeddedBody> bodies;
+};
+
 struct FluidScene {
   std::string name;
   int dim = 1;
@@ -90,6 +108,8 @@ struct FluidScene {
   double t_end = 0.0;
   long max_steps = 100000000;
   Exchange exchange;
+
+  EmbeddedSettings embedded;
 
   MixtureValue background;
   std::vector<Region> regions;
