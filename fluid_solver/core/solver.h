@@ -1,10 +1,12 @@
 // The finite-volume DEM solver, templated on dimension, phase count and same-phase flux.
 // One time step (SSP-RK2 or RK3), per stage:
 //   1. primitives of the interior cells, with the admissibility check;
-//   2. ghost cells from the boundary conditions (on primitives);
-//   3. residual: for each direction, face rows of MUSCL-reconstructed states -> DEM face
-//      contributions -> applied to the two neighbouring cell rows;
-//   4. Runge-Kutta combination, then instantaneous relaxation (two phases).
+//   2. ghost cells from the boundary conditions (on primitives), and, with an embedded boundary,
+//      ghost/solid-cut cells from image points (paper step 3);
+//   3. residual: for each direction, face rows of MUSCL-reconstructed states (with mirrored
+//      solid-side states at embedded wall faces, steps 5-6) -> DEM face contributions -> applied
+//      to the two neighbouring cell rows;
+//   4. Runge-Kutta combination of the flow cells, then instantaneous relaxation (two phases).
 // Finite-rate exchange (drag, heat) is applied once per step after the hyperbolic step.
 #pragma once
 
