@@ -1,0 +1,131 @@
+// Narrow-band signed distance phi (positive in the fluid, numerics.md 5.1) on a point lattice
+// (cell centres or cell nodes; paper section 6: phi_C and phi_N).
+//  * Band: every face scatters its exact point-face distance to the lattice points of its slab
+//    (lattice.h), keeping the minimum: exact for |phi| < band_width, O(faces + band points) work.
+//  * Sign in the band: pseudo-normal of the closest feature (Baerentzen & Aanaes 2005).
+//  * Outside the band only the sign is known: phi = +-band_width. Along a grid row consecutive
+//    out-of-band points cannot be separated by the surface (they are >= band_width >= dx from
+//    it), so each gap of a row takes the sign of the band point next to it; a row without band
+//    points takes the sign of the previous row, and only the very first such row asks the
+//    winding number (O(faces), once).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "fluid_solver/embedded/closest_point.h"
+#include "fluid_solver/embedded/lattice.h"
+
+namespace cosim::fluid::embedded {
+
+struct BandPoint {
+  std::size_t index = 0;  // lattice index
+  int face = -1;          // closest face
+  Vec3 closest{0, 0, 0};  // closest surface point (boundary intercept)
+  Vec3 normal{0, 0, 0};   // unit, solid -> fluid: (x - closest)/phi, or the pseudo-normal when phi ~ 0
+  std::array<double, 3> bary{0, 0, 0};  // of `closest` in `face`
+  double d2 = 0;                        // squared distance (scatter minimum)
+};
+
+template <int DIM>
+struct LevelSet {
+  Lattice<DIM> lattice;
+  std::vector<double> phi;    // per lattice point: exact in the band, +-band_width outside
+  std::vector<int> slot;      // index into band, -1 outside the band
+  std::vector<BandPoint> band;
+  double band_width = 0;
+  const BandPoint* at(std::size_t idx) const { return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])]; }
+};
+
+// Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
+// If `category` is given (centre lattice), the out-of-band cells are set to `fluid` / `solid` there.
+// Reusing `ls` from the previous cycle (same lattice) clears only the previous band: the one dense
+// pass is the final row fill of phi (and category).
+template <int DIM>
+void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width, std::size_t& tests,
+                       std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0) {
+  const Lattice<DIM>& L = ls.lattice;
+  ls.band_width = band_width;
+  const double bw2 = band_width * band_width;
+  if (ls.slot.size() != L.size) {
+    ls.slot.assign(L.size, -1);
+  } else {
+    for (const auto& b : ls.band) ls.slot[b.index] = -1;
+  }
+  ls.phi.resize(L.size);  // every entry is written below (band points, then the row fill)
+  ls.band.clear();
+  const Vec3 grow{band_width, band_width, band_width};
+  const int nid = DIM == 1 ? 1 : DIM;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& fc = s.faces[f];
+    Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;
+    for (int k = 1; k < nid; ++k)
+      for (std::size_t d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
+        hi[d] = std::max(hi[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
+      }
+    const Vec3& n = topo.face_normal[f];
+    for_each_in_slab(L, lo, hi, grow, n, dot(n, s.vertices[static_cast<std::size_t>(fc[0])]), band_width, [&](int I, int J, int K) {
+      ++tests;
+      const std::size_t idx = L.index(I, J, K);
+      const ClosestPoint cp = closest_on_face(s, static_cast<int>(f), L.point(I, J, K));
+      const int sl = ls.slot[idx];
+      if (cp.d2 >= (sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2)) return;
+      if (sl < 0) {
+        ls.slot[idx] = static_cast<int>(ls.band.size());
+        ls.band.push_back(BandPoint{idx, static_cast<int>(f), {}, {}, {}, cp.d2});
+      } else {
+        ls.band[static_cast<std::size_t>(sl)].face = static_cast<int>(f);
+        ls.band[static_cast<std::size_t>(sl)].d2 = cp.d2;
+      }
+    });
+  }
+  // Sign and closest data in the band.
+  double hmin = L.dx[0];
+  for (std::size_t d = 1; d < static_cast<std::size_t>(DIM); ++d) hmin = std::min(hmin, L.dx[d]);
+  for (auto& b : ls.band) {
+    const auto ijk = L.ijk(b.index);
+    const Vec3 x = L.point(ijk[0], ijk[1], ijk[2]);
+    const ClosestPoint cp = closest_on_face(s, b.face, x);
+    const Vec3 pn = pseudo_normal(s, topo, b.face, cp.feature);
+    const double d = std::sqrt(cp.d2);
+    const double phi = d == 0 ? 0.0 : (dot(x - cp.point, pn) >= 0 ? d : -d);
+    ls.phi[b.index] = phi;
+    b.closest = cp.point;
+    b.bary = cp.bary;
+    b.normal = std::abs(phi) > 1e-9 * hmin ? (1.0 / phi) * (x - cp.point) : normalized(pn);
+  }
+  // Sign outside the band, row by row.
+  std::vector<std::size_t> sorted(ls.band.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k) sorted[k] = ls.band[k].index;
+  std::sort(sorted.begin(), sorted.end());
+  auto fill = [&](std::size_t b, std::size_t e, bool positive) {
+    if (b >= e) return;
+    std::fill(ls.phi.begin() + static_cast<std::ptrdiff_t>(b), ls.phi.begin() + static_cast<std::ptrdiff_t>(e), positive ? band_width : -band_width);
+    if (category)
+      std::fill(category->begin() + static_cast<std::ptrdiff_t>(b), category->begin() + static_cast<std::ptrdiff_t>(e), positive ? fluid : solid);
+  };
+  std::size_t pos = 0;
+  const auto row = static_cast<std::size_t>(L.count[0]);
+  for (int K = 0; K < L.count[2]; ++K) {
+    for (int J = 0; J < L.count[1]; ++J) {
+      const std::size_t rb = L.index(0, J, K), re = rb + row;
+      if (pos < sorted.size() && sorted[pos] < re) {
+        std::size_t q = pos;
+        while (q < sorted.size() && sorted[q] < re) ++q;
+        fill(rb, sorted[pos], ls.phi[sorted[pos]] >= 0);
+        for (std::size_t m = pos; m + 1 < q; ++m) fill(sorted[m] + 1, sorted[m + 1], ls.phi[sorted[m]] >= 0);
+        fill(sorted[q - 1] + 1, re, ls.phi[sorted[q - 1]] >= 0);
+        pos = q;
+      } else {
+        bool positive = true;
+        if (J > 0) positive = ls.phi[L.index(0, J - 1, K)] >= 0;
+        else if (K > 0) positive = ls.phi[L.index(0, 0, K - 1)] >= 0;
+        else positive = winding_number(s, L.point(0, 0, 0)) < 0.5;
+        fill(rb, re, positive);
+      }
+    }
+  }
+}
+
+}  // namespace cosim::fluid::embedded

@@ -1,0 +1,495 @@
+// Geometry half of the embedded moving boundary (issue 4; paper section 6, Table 1; numerics.md
+// 5.1-5.2): interface segments, narrow-band signed distance, cell categories, image points,
+// thin-body refusal and the locality of the work.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <set>
+
+#include "fluid_solver/embedded/geometry.h"
+#include "fluid_solver/embedded/scene_bodies.h"
+#include "fluid_solver/embedded/shapes.h"
+
+namespace cosim::fluid::embedded {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Oracle from the dense phi arrays (O(all cells), test only): Table 1 without the ghost layer rule.
+template <int DIM>
+CellKind table1(const EmbeddedGeometry<DIM>& e, std::size_t cell) {
+  const auto& C = e.centres.lattice;
+  const auto& N = e.nodes.lattice;
+  const auto I = C.ijk(cell);
+  bool neg = false, pos = false;
+  for (int c = 0; c < (DIM > 2 ? 2 : 1); ++c)
+    for (int b = 0; b < (DIM > 1 ? 2 : 1); ++b)
+      for (int a = 0; a < 2; ++a) {
+        const double p = e.nodes.phi[N.index(I[0] + a, I[1] + b, I[2] + c)];
+        neg = neg || p < 0;
+        pos = pos || p > 0;
+      }
+  if (e.centres.phi[cell] >= 0) return neg ? CellKind::FluidCut : CellKind::Fluid;
+  return pos ? CellKind::SolidCut : CellKind::Solid;
+}
+
+bool is_cut(CellKind k) { return k == CellKind::FluidCut || k == CellKind::SolidCut; }
+
+// Common checks of any closed body: segments, categories (Table 1, promotion, ghost layers),
+// image-point stencils. Returns the number of cut cells.
+template <int DIM>
+std::size_t check_consistency(const Grid<DIM>& g, const Surface& s, const EmbeddedGeometry<DIM>& e) {
+  // Segments: measure, closure (sum n A = 0) and enclosed volume (divergence theorem).
+  double area = 0, vol = 0;
+  Vec3 nA{0, 0, 0};
+  for (const auto& seg : e.segments) {
+    area += seg.area;
+    nA = nA + seg.area * seg.normal;
+    vol += dot(seg.center, seg.normal) * seg.area / DIM;
+  }
+  const double A = surface_measure(s), V = enclosed_volume(s);
+  EXPECT_NEAR(area, A, 1e-12 * A);
+  EXPECT_NEAR(norm(nA), 0.0, 1e-12 * A);
+  EXPECT_NEAR(vol, V, 1e-11 * std::abs(V));
+  // Categories: Table 1 (+ promotion of cells crossed between their nodes), cut == owners.
+  std::set<std::size_t> owners;
+  for (const auto& seg : e.segments) owners.insert(seg.cell);
+  std::size_t cut = 0, promoted = 0;
+  const auto& C = e.centres.lattice;
+  for (std::size_t c = 0; c < g.total; ++c) {
+    const CellKind k = e.kind(c), t = table1(e, c);
+    cut += is_cut(k);
+    EXPECT_EQ(is_cut(k), owners.count(c) == 1) << "cell " << c;
+    if (is_cut(t)) {
+      EXPECT_EQ(k, t);
+    } else if (is_cut(k)) {
+      ++promoted;
+      EXPECT_EQ(e.centres.phi[c] >= 0, k == CellKind::FluidCut);
+    }
+    if (t == CellKind::Solid && !is_cut(k)) {  // ghost iff a flow centre within 2 cells
+      const auto I = C.ijk(c);
+      bool near = false;
+      for (int kk = (DIM > 2 ? -2 : 0); kk <= (DIM > 2 ? 2 : 0); ++kk)
+        for (int j = (DIM > 1 ? -2 : 0); j <= (DIM > 1 ? 2 : 0); ++j)
+          for (int i = -2; i <= 2; ++i)
+            if (C.inside(I[0] + i, I[1] + j, I[2] + kk) && e.centres.phi[C.index(I[0] + i, I[1] + j, I[2] + kk)] >= 0) near = true;
+      EXPECT_EQ(k, near ? CellKind::Ghost : CellKind::Solid) << "cell " << c;
+    }
+  }
+  EXPECT_EQ(promoted, e.counts.promoted);
+  EXPECT_EQ(cut, e.counts.fluid_cut + e.counts.solid_cut);
+  EXPECT_EQ(cut, owners.size());
+  // Image points: one per ghost / solid-cut cell; weights sum to 1, vanish on non-flow nodes;
+  // x_BI on the surface side at |phi|, x_IP the mirror of x_G (no pushes) or further out.
+  std::size_t records = 0;
+  for (std::size_t c = 0; c < g.total; ++c) records += e.kind(c) == CellKind::Ghost || e.kind(c) == CellKind::SolidCut;
+  EXPECT_EQ(records, e.image_points.size());
+  for (const auto& ip : e.image_points) {
+    EXPECT_LT(ip.phi, 0);
+    EXPECT_NEAR(norm(ip.x_boundary - ip.x_cell), -ip.phi, 1e-12);
+    EXPECT_NEAR(norm(ip.normal), 1.0, 1e-12);
+    EXPECT_NEAR(norm(ip.x_image - ip.x_cell), ip.image_distance, 1e-12);
+    EXPECT_NEAR(ip.image_distance, -2 * ip.phi + ip.pushes * g.dx[0], 1e-12);
+    double sum = 0;
+    for (int k = 0; k < ip.stencil_size; ++k) {
+      sum += ip.weights[static_cast<std::size_t>(k)];
+      const bool flow = is_flow_cell(e.category[ip.stencil[static_cast<std::size_t>(k)]]);
+      EXPECT_EQ(flow, !((ip.non_flow_mask >> k) & 1));
+      if (!flow) {
+        EXPECT_EQ(ip.weights[static_cast<std::size_t>(k)], 0.0);
+      }
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    // plain weights reproduce linear functions at x_IP (inside the hull of the padded centres)
+    bool inside = true;
+    for (int d = 0; d < DIM; ++d)
+      inside = inside && ip.x_image[static_cast<std::size_t>(d)] >= C.coord(d, 0) &&
+               ip.x_image[static_cast<std::size_t>(d)] <= C.coord(d, C.count[static_cast<std::size_t>(d)] - 1);
+    if (!inside) continue;
+    double f = 0;
+    for (int k = 0; k < ip.stencil_size; ++k) {
+      const auto J = C.ijk(ip.stencil[static_cast<std::size_t>(k)]);
+      const Vec3 x = C.point(J[0], J[1], J[2]);
+      f += ip.bilinear[static_cast<std::size_t>(k)] * (1 + 2 * x[0] - 3 * x[1] + 0.5 * x[2]);
+    }
+    EXPECT_NEAR(f, 1 + 2 * ip.x_image[0] - 3 * ip.x_image[1] + 0.5 * ip.x_image[2], 1e-10);
+  }
+  return cut;
+}
+
+template <int DIM>
+std::size_t count_pushed(const EmbeddedGeometry<DIM>& e) {
+  std::size_t n = 0;
+  for (const auto& ip : e.image_points) n += ip.pushes > 0;
+  return n;
+}
+
+TEST(EmbeddedGeometry, CircleSegmentsDistanceCategoriesImagePoints) {
+  const Grid<2> g({64, 64, 1}, {0, 0, 0}, {1, 1, 1});
+  const Vec3 c{0.513, 0.493, 0};
+  const double R = 0.27;
+  const int N = 96;
+  const Vec3 v{0.3, -0.2, 0};
+  const Surface s = make_circle(c, R, N, v);
+  const auto e = build_geometry(g, s, 3.0);
+  // perimeter of the polygon
+  double len = 0;
+  for (const auto& seg : e.segments) {
+    len += seg.area;
+    EXPECT_NEAR(norm(seg.velocity - v), 0.0, 1e-14);
+  }
+  EXPECT_NEAR(len, N * 2 * R * std::sin(kPi / N), 1e-13);
+  const std::size_t cut = check_consistency(g, s, e);
+  // phi = |x - c| - R within the chordal error in the band; sign right everywhere
+  const double chord = R * (1 - std::cos(kPi / N));
+  std::size_t in_band = 0;
+  for (const auto* ls : {&e.centres, &e.nodes}) {
+    const auto& L = ls->lattice;
+    for (std::size_t i = 0; i < L.size; ++i) {
+      const auto I = L.ijk(i);
+      const double exact = norm(L.point(I[0], I[1], I[2]) - c) - R;
+      if (std::abs(exact) < ls->band_width - chord) {
+        EXPECT_NEAR(ls->phi[i], exact, chord + 1e-13);
+        ++in_band;
+      } else if (std::abs(exact) > ls->band_width + chord) {
+        EXPECT_EQ(ls->phi[i], exact > 0 ? ls->band_width : -ls->band_width);
+      }
+    }
+  }
+  // image points: in the fluid, at about |phi| from the wall (mirror) -- exact circle distance
+  for (const auto& ip : e.image_points) {
+    const double d_ip = norm(ip.x_image - c) - R;
+    EXPECT_GT(d_ip, 0);
+    EXPECT_NEAR(d_ip, ip.image_distance + ip.phi, 2 * chord + 1e-12);
+    EXPECT_NEAR(norm(ip.wall_velocity - v), 0.0, 1e-14);
+  }
+  EXPECT_EQ(e.counts.ghost + e.counts.solid_cut, e.image_points.size());
+  std::printf("[ circle 64^2, R=%.2f, %d segments ] segments %zu, cut cells %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), "
+              "ghost %zu, pushed image points %zu, band centres %zu, band nodes %zu\n",
+              R, N, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost, count_pushed(e),
+              e.work.band_centres, e.work.band_nodes);
+  EXPECT_GT(in_band, 0u);
+  EXPECT_TRUE(e.thin.empty());
+}
+
+// Exact signed distance of the rectangle with half sizes (a, b) centred at m, rotated by th.
+double box_sdf(const Vec3& x, const Vec3& m, double a, double b, double th) {
+  const Vec3 r = x - m;
+  const double u = std::abs(std::cos(th) * r[0] + std::sin(th) * r[1]) - a;
+  const double w = std::abs(-std::sin(th) * r[0] + std::cos(th) * r[1]) - b;
+  const double out = std::hypot(std::max(u, 0.0), std::max(w, 0.0));
+  return out + std::min(std::max(u, w), 0.0);
+}
+
+void check_box_2d(double rotation_deg, bool walls_on_grid_lines) {
+  const Grid<2> g({64, 64, 1}, {0, 0, 0}, {1, 1, 1});
+  const Vec3 lo{0.25, 0.3125, 0}, hi{0.75, 0.5625, 0};  // on grid lines (multiples of 1/64)
+  const Surface s = make_box(2, lo, hi, {0, 0, 0}, rotation_deg);
+  const auto e = build_geometry(g, s, 3.0);
+  const std::size_t cut = check_consistency(g, s, e);
+  const Vec3 m = 0.5 * (lo + hi);
+  const double th = rotation_deg * kPi / 180;
+  for (const auto* ls : {&e.centres, &e.nodes}) {
+    const auto& L = ls->lattice;
+    for (std::size_t i = 0; i < L.size; ++i) {
+      const auto I = L.ijk(i);
+      const double exact = box_sdf(L.point(I[0], I[1], I[2]), m, 0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), th);
+      if (std::abs(exact) < ls->band_width - 1e-12) {
+        EXPECT_NEAR(ls->phi[i], exact, 1e-13);
+      } else {
+        EXPECT_EQ(ls->phi[i] > 0, exact > 0);
+      }
+    }
+  }
+  for (const auto& seg : e.segments) {  // normals: the four sides
+    const double ang = std::atan2(seg.normal[1], seg.normal[0]) - th;
+    EXPECT_NEAR(std::remainder(ang, kPi / 2), 0.0, 1e-12);
+  }
+  if (walls_on_grid_lines) {  // zero convention: only the cells on the solid side are cut (they own the pieces)
+    EXPECT_EQ(e.counts.fluid_cut, 0u);
+    EXPECT_EQ(e.counts.promoted, e.counts.solid_cut);
+  }
+  for (const auto& ip : e.image_points) EXPECT_GT(box_sdf(ip.x_image, m, 0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), th), 0);
+  std::printf("[ box %.0f deg ] segments %zu, cut %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), ghost %zu, pushed %zu\n",
+              rotation_deg, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost,
+              count_pushed(e));
+}
+
+TEST(EmbeddedGeometry, AlignedBoxWithWallsOnGridLines) { check_box_2d(0, true); }
+TEST(EmbeddedGeometry, BoxRotatedBy30Degrees) { check_box_2d(30, false); }
+
+TEST(EmbeddedGeometry, SphereAreaVolumeDistance3D) {
+  const Grid<3> g({32, 32, 32}, {0, 0, 0}, {1, 1, 1});
+  const Vec3 c{0.507, 0.489, 0.512};
+  const double R = 0.3;
+  const Surface s = make_sphere(c, R, 3, {0.1, 0, 0});
+  ASSERT_EQ(s.faces.size(), 1280u);
+  const auto e = build_geometry(g, s, 3.0);
+  const std::size_t cut = check_consistency(g, s, e);
+  double area = 0, vol = 0;
+  for (const auto& seg : e.segments) {
+    area += seg.area;
+    vol += dot(seg.center - c, seg.normal) * seg.area / 3;
+  }
+  EXPECT_NEAR(area, surface_measure(s), 1e-12);
+  EXPECT_NEAR(vol, 4.0 / 3 * kPi * R * R * R, 0.02 * 4.0 / 3 * kPi * R * R * R);  // icosphere vs sphere
+  // chordal error: the deepest point of the faces below the sphere
+  double inner = R;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const Vec3 n = face_normal(s, static_cast<int>(f));
+    inner = std::min(inner, dot(s.vertices[static_cast<std::size_t>(s.faces[f][0])] - c, n));
+  }
+  const double chord = R - inner;
+  for (const auto& b : e.centres.band) {
+    const auto I = e.centres.lattice.ijk(b.index);
+    const double exact = norm(e.centres.lattice.point(I[0], I[1], I[2]) - c) - R;
+    EXPECT_NEAR(e.centres.phi[b.index], exact, chord + 1e-12);
+  }
+  for (const auto& ip : e.image_points) {
+    EXPECT_GT(norm(ip.x_image - c) - R, -chord);
+    EXPECT_NEAR(ip.wall_velocity[0], 0.1, 1e-14);
+  }
+  std::printf("[ sphere 32^3, 1280 faces ] segments %zu, cut %zu, ghost %zu, pushed %zu, clip tests %zu, distance tests %zu, "
+              "volume %.6f vs sphere %.6f\n",
+              e.segments.size(), cut, e.counts.ghost, count_pushed(e), e.work.clip_tests, e.work.distance_tests, vol,
+              4.0 / 3 * kPi * R * R * R);
+}
+
+TEST(EmbeddedGeometry, RotatedBoxAndStep3D) {
+  const Grid<3> g({24, 24, 24}, {0, 0, 0}, {1, 1, 1});
+  const Surface box = make_box(3, {0.3, 0.3, 0.3}, {0.7, 0.6, 0.65}, {0, 0, 0}, 30);
+  EXPECT_NEAR(enclosed_volume(box), 0.4 * 0.3 * 0.35, 1e-14);
+  check_consistency(g, box, build_geometry(g, box, 3.0));
+  // a step standing on the floor: its lower part lies outside the padded grid
+  const Surface step = make_step(3, {0.5, -0.5, -0.5}, {1.5, 0.25, 1.5});
+  const auto e = build_geometry(g, step, 3.0);
+  EXPECT_GT(e.counts.solid_cut + e.counts.fluid_cut, 0u);
+  EXPECT_EQ(e.kind(g.index(20, 2, 12)), CellKind::Solid);
+  EXPECT_EQ(e.kind(g.index(3, 2, 12)), CellKind::Fluid);
+}
+
+TEST(EmbeddedGeometry, MovingCircleShiftsCategoriesByOneCell) {
+  const int n = 64;
+  const Grid<2> g({n, n, 1}, {0, 0, 0}, {1, 1, 1});
+  const double h = 1.0 / n;
+  Surface s = make_circle({0.4 + 0.003, 0.5 - 0.002, 0}, 0.2, 64, {2.0, 0, 0});
+  const auto e0 = build_geometry(g, s, 3.0);
+  move_surface(s, h / 2.0);  // one cell
+  const auto e1 = build_geometry(g, s, 3.0);
+  std::size_t changed = 0, mismatched = 0;
+  for (int j = -2; j < n + 2; ++j)
+    for (int i = -2; i < n + 2; ++i) {
+      changed += e1.category[g.index(i, j)] != e0.category[g.index(i, j)];
+      if (i + 1 < n + 2) mismatched += e1.category[g.index(i + 1, j)] != e0.category[g.index(i, j)];
+    }
+  EXPECT_GT(changed, 40u);   // the categories move with the body...
+  EXPECT_EQ(mismatched, 0u); // ...by exactly one cell
+  // rebuilding into the previous cycle's buffers gives the same result
+  GeometryOptions opt;
+  EmbeddedGeometry<2> reused = e0;
+  build_geometry(g, s, opt, reused);
+  EXPECT_EQ(reused.category, e1.category);
+  EXPECT_EQ(reused.centres.phi, e1.centres.phi);
+  EXPECT_EQ(reused.nodes.phi, e1.nodes.phi);
+  EXPECT_EQ(reused.image_points.size(), e1.image_points.size());
+  EXPECT_EQ(e0.counts.ghost, e1.counts.ghost);
+  EXPECT_EQ(e0.counts.solid_cut, e1.counts.solid_cut);
+  check_consistency(g, s, e1);
+}
+
+TEST(EmbeddedGeometry, ThinBodiesAreRefusedWithTheirLocation) {
+  const Grid<2> g({64, 64, 1}, {0, 0, 0}, {1, 1, 1});
+  const double h = 1.0 / 64;
+  auto message = [&](double y0, double thickness, int reach = 1) -> std::string {
+    GeometryOptions opt;
+    opt.thin_reach = reach;
+    try {
+      build_geometry(g, make_box(2, {0.3, y0, 0}, {0.7, y0 + thickness, 0}), opt);
+    } catch (const std::runtime_error& err) {
+      return err.what();
+    }
+    return "";
+  };
+  // one cell thick at several offsets against the grid, and thinner than a cell
+  for (double off : {0.0, 0.3, 0.5, 0.77}) {
+    const std::string m = message(0.5 + off * h, h);
+    EXPECT_NE(m.find("thinner than two cells near x = ("), std::string::npos) << "offset " << off << ": '" << m << "'";
+  }
+  EXPECT_NE(message(0.5 + 0.1 * h, 0.3 * h).find("thinner than two cells"), std::string::npos);
+  EXPECT_NE(message(0.5 + 0.7 * h, 0.6 * h).find("thinner than two cells"), std::string::npos);
+  // 1.6 cells: each side has its own first ghost layer (accepted), the second layer is shared
+  EXPECT_EQ(message(0.5 + 0.2 * h, 1.6 * h), "");
+  EXPECT_NE(message(0.5 + 0.2 * h, 1.6 * h, 2).find("thinner than two cells"), std::string::npos);
+  EXPECT_NE(message(0.5 + 0.6 * h, 1.6 * h).find("thinner than two cells"), std::string::npos);  // centres 0.9 / 1.9: both near the top
+  for (double off : {0.0, 0.3, 0.77}) EXPECT_EQ(message(0.5 + off * h, 2 * h), "") << off;
+  // two cells with both walls through cell centres (phi = 0 there: flow cells): one solid row is left
+  EXPECT_NE(message(0.5 + 0.5 * h, 2 * h).find("thinner than two cells"), std::string::npos);
+  EXPECT_EQ(message(0.5 + 0.3 * h, 4 * h, 2), "");  // four cells: fine even for two shared layers
+  EXPECT_EQ(message(0.5 + 0.5 * h, 6 * h, 2), "");
+  // the message names the place; listing instead of throwing on request
+  GeometryOptions opt;
+  opt.refuse_thin = false;
+  const auto e = build_geometry(g, make_box(2, {0.3, 0.5 + 0.3 * h, 0}, {0.7, 0.5 + 1.3 * h, 0}), opt);
+  ASSERT_FALSE(e.thin.empty());
+  for (const auto& t : e.thin) {
+    EXPECT_GT(t.x[0], 0.3 - 3 * h);
+    EXPECT_LT(t.x[0], 0.7 + 3 * h);
+    EXPECT_NEAR(t.x[1], 0.5 + 0.8 * h, 3 * h);
+  }
+  std::printf("[ thin plate ] %zu thin spots, e.g. %s\n", e.thin.size(), describe_thin_spot(e.thin.front()).c_str());
+  // 1D: an interval one cell wide
+  const Grid<1> g1({40, 1, 1}, {0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(build_geometry(g1, make_interval(0.5 + 0.01, 0.5 + 0.01 + 1.0 / 40), 3.0), std::runtime_error);
+}
+
+TEST(EmbeddedGeometry, WorkFollowsTheSurfaceNotTheGrid) {
+  // Same body in physical units on 512^2 and 1024^2; segments span ~13 / 26 cells.
+  auto run = [](int n, double R, int segments) {
+    const Grid<2> g({n, n, 1}, {0, 0, 0}, {1, 1, 1});
+    return build_geometry(g, make_circle({0.503, 0.497, 0}, R, segments), 3.0);
+  };
+  const auto a = run(512, 0.3, 64), b = run(1024, 0.3, 64), small = run(512, 0.15, 32);
+  {  // a second cycle reusing the buffers (the way a solver calls it)
+    const Grid<2> g({1024, 1024, 1}, {0, 0, 0}, {1, 1, 1});
+    EmbeddedGeometry<2> again = b;
+    build_geometry(g, make_circle({0.503 + 0.3 / 1024, 0.497, 0}, 0.3, 64), GeometryOptions{}, again);
+    const auto& t = again.timing;
+    std::printf("[ timing 1024^2, reused buffers ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, "
+                "image points %.3f ms, thin %.3f ms, total %.3f ms\n",
+                1e3 * t.surface, 1e3 * t.clip, 1e3 * t.distance, 1e3 * t.categories, 1e3 * t.image_points, 1e3 * t.thin, 1e3 * t.total);
+  }
+  auto cut = [](const auto& e) { return static_cast<double>(e.counts.fluid_cut + e.counts.solid_cut); };
+  const double r_cut = cut(b) / cut(a), r_clip = double(b.work.clip_tests) / double(a.work.clip_tests),
+               r_dist = double(b.work.distance_tests) / double(a.work.distance_tests);
+  std::printf("[ locality ] 512^2: cut %.0f, clip tests %zu, distance tests %zu, band %zu; 1024^2: cut %.0f, clip tests %zu, "
+              "distance tests %zu, band %zu; ratios cut %.2f clip %.2f distance %.2f (all cells: 4)\n",
+              cut(a), a.work.clip_tests, a.work.distance_tests, a.work.band_centres, cut(b), b.work.clip_tests, b.work.distance_tests,
+              b.work.band_centres, r_cut, r_clip, r_dist);
+  for (const auto* e : {&a, &b})
+    std::printf("[ timing %s ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, image points %.3f ms, "
+                "thin %.3f ms, total %.3f ms\n",
+                e == &a ? "512^2" : "1024^2", 1e3 * e->timing.surface, 1e3 * e->timing.clip, 1e3 * e->timing.distance,
+                1e3 * e->timing.categories, 1e3 * e->timing.image_points, 1e3 * e->timing.thin, 1e3 * e->timing.total);
+  EXPECT_NEAR(r_cut, 2.0, 0.1);
+  EXPECT_GT(r_clip, 1.7);
+  EXPECT_LT(r_clip, 2.3);
+  EXPECT_GT(r_dist, 1.6);
+  EXPECT_LT(r_dist, 2.4);
+  // and with the body size at a fixed grid (same segment length)
+  const double r_size = double(a.work.distance_tests) / double(small.work.distance_tests);
+  std::printf("[ locality ] 512^2 R=0.15: distance tests %zu; R=0.3 / R=0.15: %.2f\n", small.work.distance_tests, r_size);
+  EXPECT_GT(r_size, 1.6);
+  EXPECT_LT(r_size, 2.4);
+}
+
+TEST(EmbeddedGeometry, Interval1D) {
+  const Grid<1> g({40, 1, 1}, {0, 0, 0}, {1, 1, 1});
+  const double a = 0.5 + 0.013, b = 0.8 - 0.004;
+  const Surface s = make_interval(a, b, 1.5);
+  const auto e = build_geometry(g, s, 3.0);
+  check_consistency(g, s, e);
+  for (int i = -2; i < 42; ++i) {
+    const double x = g.center(0, i), exact = std::max(a - x, x - b);
+    if (std::abs(exact) < e.band_width) {
+      EXPECT_NEAR(e.centres.phi[g.index(i)], exact, 1e-14);
+    }
+  }
+  // a = 0.513 lies in cell 20 (centre 0.5125 < a): fluid-cut; cell 21 ghost... the body's left end
+  EXPECT_EQ(e.kind(g.index(20)), CellKind::FluidCut);
+  EXPECT_EQ(e.kind(g.index(21)), CellKind::Ghost);
+  EXPECT_EQ(e.kind(g.index(22)), CellKind::Ghost);
+  EXPECT_EQ(e.kind(g.index(23)), CellKind::Solid);
+  for (const auto& ip : e.image_points) {
+    EXPECT_EQ(ip.stencil_size, 2);
+    EXPECT_EQ(ip.wall_velocity[0], 1.5);
+  }
+}
+
+TEST(EmbeddedGeometry, OpenOrInconsistentSurfacesAreRejected) {
+  Surface open = make_circle({0.5, 0.5, 0}, 0.2, 16);
+  open.faces.pop_back();
+  EXPECT_THROW(build_topology(open), std::runtime_error);
+  Surface flipped = make_sphere({0.5, 0.5, 0.5}, 0.2, 1);
+  std::swap(flipped.faces[3][1], flipped.faces[3][2]);
+  EXPECT_THROW(build_topology(flipped), std::runtime_error);
+  Surface holed = make_sphere({0.5, 0.5, 0.5}, 0.2, 1);
+  holed.faces.erase(holed.faces.begin());
+  EXPECT_THROW(build_topology(holed), std::runtime_error);
+  const Grid<2> g({16, 16, 1}, {0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(build_geometry(g, make_sphere({0.5, 0.5, 0.5}, 0.2, 0), 3.0), std::runtime_error);  // 3D surface, 2D grid
+}
+
+TEST(EmbeddedGeometry, SceneBodiesBecomeClosedSurfaces) {
+  EmbeddedSettings set2;
+  EmbeddedBody box;
+  box.shape = EmbeddedBody::Shape::Box;
+  box.lower = {0.1, 0.1, 0}, box.upper = {0.3, 0.2, 0}, box.rotation_deg = 15;
+  EmbeddedBody circle;
+  circle.shape = EmbeddedBody::Shape::Circle;
+  circle.center = {0.6, 0.6, 0}, circle.radius = 0.1, circle.segments = 32, circle.velocity = {1, 0, 0};
+  EmbeddedBody poly;
+  poly.shape = EmbeddedBody::Shape::Polygon;
+  poly.vertices = {{0.7, 0.1}, {0.9, 0.1}, {0.8, 0.3}};  // counter-clockwise
+  EmbeddedBody step;
+  step.shape = EmbeddedBody::Shape::Step;
+  step.lower = {0.45, -0.02, 0}, step.upper = {0.6, 0.05, 0};  // below the floor, inside the ghost layers
+  set2.bodies = {box, circle, poly, step};
+  const Surface s2 = surface_of(set2, 2);
+  EXPECT_NO_THROW(build_topology(s2));
+  EXPECT_NEAR(enclosed_volume(s2), 0.02 + 32 * 0.5 * 0.01 * std::sin(2 * kPi / 32) + 0.02 + 0.15 * 0.07, 1e-13);
+  const Grid<2> g({64, 64, 1}, {0, 0, 0}, {1, 1, 1});
+  check_consistency(g, s2, build_geometry(g, s2, 3.0));
+  EmbeddedBody sphere;
+  sphere.shape = EmbeddedBody::Shape::Sphere;
+  sphere.center = {0.5, 0.5, 0.5}, sphere.radius = 0.25, sphere.segments = 2;
+  const Surface s3 = surface_of(sphere, 3);
+  EXPECT_EQ(s3.faces.size(), 320u);
+  EXPECT_NO_THROW(build_topology(s3));
+  EXPECT_GT(enclosed_volume(s3), 0);
+}
+
+}  // namespace
+}  // namespace cosim::fluid::embedded
+
+namespace cosim::fluid::embedded {
+namespace {
+
+// The bodies of the issue-4 scenes (configs/*.yaml) build without refusal on their meshes.
+TEST(EmbeddedGeometry, SceneBodiesOnTheirMeshes) {
+  {  // low_mach_step: 640x320, step reaching below the floor and past the outlet
+    const Grid<2> g({640, 320, 1}, {0, 0, 0}, {2, 1, 1});
+    const auto e = build_geometry(g, make_step(2, {0.5, -0.1, 0}, {2.1, 0.35, 0}), 3.0);
+    EXPECT_EQ(e.kind(g.index(300, 50)), CellKind::Solid);
+    EXPECT_EQ(e.kind(g.index(100, 50)), CellKind::Fluid);
+    EXPECT_GT(e.counts.solid_cut, 0u);
+    std::printf("[ low_mach_step 640x320 ] segments %zu, cut %zu, ghost %zu, total %.3f ms\n", e.segments.size(),
+                e.counts.fluid_cut + e.counts.solid_cut, e.counts.ghost, 1e3 * e.timing.total);
+  }
+  {  // supersonic_cylinder: 240^2, 256 segments
+    const Grid<2> g({240, 240, 1}, {0, 0, 0}, {2, 2, 1});
+    const Surface s = make_circle({1.2, 1.0, 0}, 0.25, 256);
+    check_consistency(g, s, build_geometry(g, s, 3.0));
+  }
+  {  // embedded_advection: a 4.2 x 3.3 cell box on 13x13, moving diagonally by a fraction of a cell per cycle
+    const Grid<2> g({13, 13, 1}, {0, 0, 0}, {1, 1, 1});
+    Surface s = make_box(2, {0.3, 0.3, 0}, {0.62, 0.55, 0}, {0.1, 0.1, 0});
+    EmbeddedGeometry<2> e;
+    for (int cycle = 0; cycle < 40; ++cycle) {
+      ASSERT_NO_THROW(build_geometry(g, s, GeometryOptions{}, e)) << "cycle " << cycle;
+      check_consistency(g, s, e);
+      move_surface(s, 0.05);
+    }
+  }
+}
+
+TEST(EmbeddedGeometry, ThinPlate3DIsRefused) {
+  const Grid<3> g({24, 24, 24}, {0, 0, 0}, {1, 1, 1});
+  const double h = 1.0 / 24;
+  EXPECT_THROW(build_geometry(g, make_box(3, {0.3, 0.3, 0.5 + 0.4 * h}, {0.7, 0.7, 0.5 + 1.4 * h}), 3.0), std::runtime_error);
+  EXPECT_NO_THROW(build_geometry(g, make_box(3, {0.3, 0.3, 0.5 + 0.4 * h}, {0.7, 0.7, 0.5 + 5.4 * h}), 3.0));
+}
+
+}  // namespace
+}  // namespace cosim::fluid::embedded
