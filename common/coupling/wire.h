@@ -1,0 +1,43 @@
+// Envelope encoding, header checks, array-size validation and conversions between the plain structs of
+// types.h and the generated protobuf messages. Shared by the client library and the coupler.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "common/coupling/types.h"
+#include "proto/coupling.pb.h"
+
+namespace cosim::coupling {
+
+
+constexpr std::uint32_t kProtocolVersion = pb::PROTOCOL_VERSION_CURRENT;
+
+pb::Role to_pb(Role r);
+Role from_pb(pb::Role r);  // ROLE_UNSPECIFIED -> Coupler is never produced: throws ProtocolError
+pb::CouplingMode to_pb(Mode m);
+Mode from_pb(pb::CouplingMode m);
+
+// "InterfaceFaces", "Hello", ..., or "(empty)" when no body is set.
+std::string body_name(const pb::Envelope& e);
+std::string body_name(pb::Envelope::BodyCase c);
+
+// Envelope with a filled header.
+pb::Envelope make_envelope(Role sender, const std::string& token, long cycle, double time, double busy = 0.0);
+
+std::string encode(const pb::Envelope& e);
+// Parses bytes; nullopt and a reason when they are not an Envelope with a header and a body.
+std::optional<pb::Envelope> decode(const std::string& bytes, std::string& why);
+
+// Array sizes and values of a body: empty string when consistent, otherwise "InterfaceFaces.normal: 6 values,
+// expected dim * count = 9". Non-finite values are rejected where the protocol forbids them.
+std::string validate(const pb::Envelope& e);
+
+void to_pb(const Faces& f, pb::InterfaceFaces& m);
+Faces from_pb(const pb::InterfaceFaces& m);
+void to_pb(const FluidSamples& s, pb::FluidSamples& m);
+FluidSamples from_pb(const pb::FluidSamples& m);
+void to_pb(const InterfaceStates& s, pb::InterfaceStates& m);
+InterfaceStates from_pb(const pb::InterfaceStates& m);
+
+}  // namespace cosim::coupling

@@ -1,0 +1,32 @@
+#include "coupler/coupler_config.h"
+
+#include "common/config/config.h"
+#include "common/config/output_times.h"
+
+namespace cosim::coupler {
+
+CouplerConfig read_coupler_config(const std::string& file, const std::vector<std::string>& overrides) {
+  using namespace cosim::config;
+  Node root = load_file(file, overrides);
+  Node n = root.child("coupling");
+  CouplerConfig c;
+  const std::string mode = n.get<std::string>("mode", "impedance", one_of({"impedance", "standard", "characteristic"}));
+  c.mode = mode == "standard"         ? coupling::Mode::Standard
+           : mode == "characteristic" ? coupling::Mode::Characteristic
+                                      : coupling::Mode::Impedance;
+  Node t = n.child("time");
+  c.t_end = t.require<double>("end", positive());
+  c.max_cycles = t.get<int>("max_cycles", 1000000000, int_at_least(1));
+  c.dt_max = t.get<double>("dt_max", 0.0, non_negative());
+  t.finish();
+  auto out = n.optional_child("output");
+  c.output_times = read_output_times(out ? &*out : nullptr, c.t_end);
+  if (out) out->finish();
+  c.timeout = n.get<double>("timeout", 5.0, positive());
+  c.heartbeat_interval = n.get<double>("heartbeat_interval", c.timeout / 10.0, in_open_closed(0.0, c.timeout / 2.0));
+  c.connect_timeout = n.get<double>("connect_timeout", 30.0, positive());
+  n.finish();
+  return c;
+}
+
+}  // namespace cosim::coupler

@@ -1,0 +1,32 @@
+// The `coupling:` section of a scene (the coupler reads only this section; the others belong to the solvers).
+//   coupling:
+//     mode: impedance            # impedance | standard | characteristic (interface_conditions.h)
+//     time: {end: 0.37, max_cycles: 1000000, dt_max: 1.0e-3}   # [s], [-], [s] (dt_max optional)
+//     output: {interval: 0.005}  # [s] or times: [...]; snapshot requests to both solvers
+//     timeout: 5.0               # [s] a peer silent for longer is declared dead
+//     heartbeat_interval: 0.5    # [s] (default: timeout / 10)
+//     connect_timeout: 30.0      # [s] to wait for both solvers' Hello
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/coupling/types.h"
+
+namespace cosim::coupler {
+
+struct CouplerConfig {
+  coupling::Mode mode = coupling::Mode::Impedance;
+  double t_end = 0.0;
+  long max_cycles = 1000000000L;
+  double dt_max = 0.0;  // 0: no limit
+  std::vector<double> output_times;  // sorted, ends with t_end
+  double timeout = 5.0;
+  double heartbeat_interval = 0.5;
+  double connect_timeout = 30.0;
+};
+
+// Throws config::ConfigError naming the file, line and key.
+CouplerConfig read_coupler_config(const std::string& file, const std::vector<std::string>& overrides);
+
+}  // namespace cosim::coupler

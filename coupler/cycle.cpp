@@ -1,0 +1,170 @@
+#include "coupler/cycle.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "common/app/run_driver.h"
+#include "common/coupling/errors.h"
+#include "common/coupling/wire.h"
+#include "coupler/history.h"
+#include "coupler/interface_conditions.h"
+
+namespace cosim::coupler {
+
+using coupling::Role;
+namespace pb = coupling::pb;
+
+namespace {
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+pb::Envelope envelope(const Hub& hub, long cycle, double t) {
+  return coupling::make_envelope(Role::Coupler, hub.token(), cycle, t);
+}
+}  // namespace
+
+double choose_dt(double proposal_min, double dt_max, double t, double t_next_output) {
+  double dt = proposal_min;
+  if (dt_max > 0) dt = std::min(dt, dt_max);
+  const double remaining = t_next_output - t;
+  if (dt >= remaining) return remaining;
+  if (dt > 0.5 * remaining) return 0.5 * remaining;
+  return dt;
+}
+
+namespace {
+
+struct Loop {
+  const CouplerConfig& cfg;
+  Hub& hub;
+  History history;
+  RunSummary sum;
+
+  void send_both(pb::Envelope& e) {
+    hub.send(Role::Fluid, e);
+    hub.send(Role::Solid, e);
+  }
+
+  // One cycle; returns the smallest proposal for the next one.
+  double cycle(long n, double t, double dt) {
+    const double start = now_s();
+    const double busy0_f = hub.peer(Role::Fluid).busy, busy0_s = hub.peer(Role::Solid).busy;
+    pb::Envelope d = envelope(hub, n, t);
+    d.mutable_dt_decision()->set_dt(dt);
+    d.mutable_dt_decision()->set_target_time(t + dt);
+    send_both(d);
+
+    pb::Envelope faces_msg = hub.expect(Role::Solid, pb::Envelope::kFaces, n);
+    pb::Envelope fwd = envelope(hub, n, t + dt);
+    *fwd.mutable_faces() = faces_msg.faces();
+    hub.send(Role::Fluid, fwd);
+    pb::Envelope samples_msg = hub.expect(Role::Fluid, pb::Envelope::kSamples, n);
+
+    const double c0 = now_s();
+    const coupling::Faces faces = coupling::from_pb(faces_msg.faces());
+    const coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
+    if (samples.count != faces.count)
+      hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
+                                          faces.count));
+    const coupling::InterfaceStates st = interface_conditions(faces, samples, cfg.mode);
+    pb::Envelope to_fluid = envelope(hub, n, t + dt);
+    coupling::to_pb(st, *to_fluid.mutable_states());
+    to_fluid.mutable_states()->clear_face_pressure();
+    to_fluid.mutable_states()->clear_face_normal_velocity();
+    pb::Envelope to_solid = envelope(hub, n, t + dt);
+    coupling::to_pb(st, *to_solid.mutable_states());
+    to_solid.mutable_states()->set_phases(0);
+    to_solid.mutable_states()->clear_pressure();
+    to_solid.mutable_states()->clear_normal_velocity();
+    double coupler_time = now_s() - c0;
+    hub.send(Role::Fluid, to_fluid);
+    hub.send(Role::Solid, to_solid);
+
+    auto proposals = hub.expect_both(pb::Envelope::kDtProposal, n);
+    const double c1 = now_s();
+    CycleTiming tm;
+    tm.solid = hub.peer(Role::Solid).busy - busy0_s;
+    tm.fluid = hub.peer(Role::Fluid).busy - busy0_f;
+    tm.wall = c1 - start;
+    tm.coupler = coupler_time;
+    history.record(n, t + dt, dt, faces, st, tm);
+    tm.coupler += now_s() - c1;
+    sum.total.wall += tm.wall;
+    sum.total.solid += tm.solid;
+    sum.total.fluid += tm.fluid;
+    sum.total.coupler += tm.coupler;
+    return std::min(proposals[0].dt_proposal().dt(), proposals[1].dt_proposal().dt());
+  }
+
+  void run() {
+    hub.handshake();
+    double t = 0.0, dt = 0.0;
+    std::size_t next_out = 0;
+    int out_index = 0;
+    const auto output = [&](long n) {
+      pb::Envelope o = envelope(hub, n, t);
+      o.mutable_output_request()->set_index(out_index++);
+      send_both(o);
+    };
+    for (long n = 0;; ++n) {
+      const double proposal = cycle(n, t, dt);
+      t += dt;
+      sum.cycles = n;
+      sum.time = t;
+      if (n == 0) output(n);
+      while (next_out < cfg.output_times.size() && t >= cfg.output_times[next_out] * (1.0 - 1e-14)) {
+        output(n);
+        ++next_out;
+      }
+      history.progress(n, t, cfg.t_end);
+      if (t >= cfg.t_end * (1.0 - 1e-14) || next_out >= cfg.output_times.size()) {
+        sum.message = fmt::format("completed: t = {:.9g} s after {} cycles", t, n);
+        break;
+      }
+      if (n >= cfg.max_cycles) {
+        sum.message = fmt::format("stopped at max_cycles = {} (t = {:.9g} s)", cfg.max_cycles, t);
+        spdlog::warn("{}", sum.message);
+        break;
+      }
+      dt = choose_dt(proposal, cfg.dt_max, t, cfg.output_times[next_out]);
+      if (!(dt > 0))
+        throw coupling::ProtocolError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s", dt, t));
+    }
+    history.progress(sum.cycles, t, cfg.t_end, true);
+    hub.stop_all(sum.message, false);
+  }
+};
+
+}  // namespace
+
+RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir) {
+  RunSummary s;
+  try {
+    Loop loop{cfg, hub, History(out_dir), {}};
+    try {
+      loop.run();
+      return loop.sum;
+    } catch (...) {
+      s = loop.sum;
+      throw;
+    }
+  } catch (const coupling::CouplingError& e) {
+    const bool interrupted = app::interrupted();
+    s.code = interrupted ? 130 : 5;
+    s.status = interrupted ? "interrupted" : "failed";
+    s.message = e.what();
+  } catch (const std::exception& e) {
+    s.code = 4;
+    s.status = "failed";
+    s.message = e.what();
+  }
+  spdlog::error("{}", s.message);
+  hub.stop_all("coupler: " + s.message, true);
+  return s;
+}
+
+}  // namespace cosim::coupler

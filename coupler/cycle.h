@@ -1,0 +1,31 @@
+// The coupled cycle of DESIGN.md / paper section 8, driven by the coupler (docs/protocol.md):
+//   cycle n (t^n -> t^n + dt):  DtDecision -> both;  solid advances, sends InterfaceFaces;  faces -> fluid;
+//   fluid samples, sends FluidSamples;  interface conditions;  InterfaceStates -> fluid and solid;
+//   fluid advances;  DtProposal <- both;  OutputRequest when an output time is reached;  next dt = min of proposals.
+// Cycle 0 is the initial exchange with dt = 0 (nobody advances): the solid gets its first interface pressure.
+#pragma once
+
+#include <filesystem>
+
+#include "coupler/coupler_config.h"
+#include "coupler/history.h"
+#include "coupler/hub.h"
+
+namespace cosim::coupler {
+
+struct RunSummary {
+  int code = 0;  // 0 completed, 5 peer or protocol failure, 4 I/O, 130 interrupted
+  std::string status = "completed", message;
+  long cycles = 0;
+  double time = 0;
+  CycleTiming total;  // sums over the cycles
+};
+
+// Handshakes and runs to t_end; on any failure stops both solvers with a reason and returns a non-zero code.
+RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir);
+
+// The next step: min of the proposals and dt_max, shortened so that no output time is stepped over and no
+// step is tiny (as common/app/run_driver.h).
+double choose_dt(double proposal_min, double dt_max, double t, double t_next_output);
+
+}  // namespace cosim::coupler

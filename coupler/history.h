@@ -1,0 +1,33 @@
+// Per-cycle records of a coupled run in the output directory:
+//   interface_history.csv  cycle, time [s], dt [s], force on the solid F = -sum p_face A n [N] (x, y, z),
+//                          area-weighted mean face velocity [m/s] and centre [m] (x, y, z), mean face pressure [Pa]
+//   timing.csv             cycle, wall [s], solid busy, fluid busy, coupler compute, communication/wait [s]
+//   progress.txt           one line "cycle time t_end", replaced at most twice a second (the launcher reads it)
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/coupling/types.h"
+
+namespace cosim::coupler {
+
+struct CycleTiming {
+  double wall = 0, solid = 0, fluid = 0, coupler = 0;
+  double comm() const { return wall - solid - fluid - coupler; }
+};
+
+class History {
+ public:
+  explicit History(const std::filesystem::path& dir);  // throws CouplingError naming the file
+  void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st,
+              const CycleTiming& timing);
+  void progress(long cycle, double time, double t_end, bool force = false);
+
+ private:
+  std::filesystem::path dir_;
+  std::ofstream hist_, timing_;
+  double last_progress_ = -1e300;
+};
+
+}  // namespace cosim::coupler

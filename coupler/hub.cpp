@@ -1,0 +1,265 @@
+#include "coupler/hub.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "common/app/run_driver.h"
+#include "common/coupling/errors.h"
+#include "common/coupling/wire.h"
+
+namespace cosim::coupler {
+
+using coupling::PeerLost;
+using coupling::ProtocolError;
+using coupling::Role;
+namespace pb = coupling::pb;
+
+namespace {
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+const std::array<Role, 2> kRoles{Role::Fluid, Role::Solid};
+}  // namespace
+
+std::string Peer::describe(Role r) const {
+  if (program.empty()) return coupling::role_name(r);
+  return fmt::format("{} ({}, pid {})", coupling::role_name(r), program, pid);
+}
+
+Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(transcript) {
+  sock_.set_router_mandatory();
+  sock_.bind(o.endpoint);
+  bound_ = sock_.last_endpoint();
+}
+
+Hub::~Hub() {
+  try {
+    sock_.set_linger(1000);  // deliver the last Stop / Error
+  } catch (...) {
+  }
+}
+
+void Hub::reply_error(const std::string& id, const std::string& reason) {
+  pb::Envelope e = coupling::make_envelope(Role::Coupler, opt_.token, cycle_, time_);
+  e.mutable_error()->set_reason(reason);
+  sock_.send({id, coupling::encode(e)}, 200);
+}
+
+void Hub::fail_peer(Role r, const std::string& what) {
+  const std::string msg = fmt::format("{} {}", peer(r).describe(r), what);
+  reply_error(peer(r).id, msg);
+  throw ProtocolError(msg);
+}
+
+std::string Hub::check_hello(const pb::Envelope& e) const {
+  const auto& h = e.header();
+  const auto& hello = e.hello();
+  if (h.protocol_version() != coupling::kProtocolVersion)
+    return fmt::format("protocol version {} of {}, the coupler speaks version {}", h.protocol_version(),
+                       hello.program().empty() ? "the peer" : hello.program(), coupling::kProtocolVersion);
+  if (hello.role() != pb::ROLE_FLUID && hello.role() != pb::ROLE_SOLID)
+    return fmt::format("Hello.role: {}, expected fluid or solid", pb::Role_Name(hello.role()));
+  if (h.token() != opt_.token) return "wrong run token (this process was not started for this run)";
+  if (hello.scene_hash() != opt_.scene_hash)
+    return fmt::format("scene hash {} differs from the coupler's {} (different scene file or --set overrides)",
+                       hello.scene_hash(), opt_.scene_hash);
+  const Role r = coupling::from_pb(hello.role());
+  if (peer(r).connected) return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));
+  return "";
+}
+
+bool Hub::poll_once(int timeout_ms, Incoming& out) {
+  coupling::Frames frames;
+  const double t0 = now_s();
+  const bool got = sock_.receive(frames, timeout_ms);
+  wait_ += now_s() - t0;
+  if (!got || frames.empty()) return false;
+  const std::string id = frames[0];
+  Role known = Role::Coupler;  // Coupler: not a connected peer's data connection
+  for (Role r : kRoles)
+    if (peer(r).connected && peer(r).id == id) known = r;
+  const auto fail_or_ignore = [&](const std::string& why) {
+    if (known != Role::Coupler) fail_peer(known, "sent a " + why);
+    spdlog::warn("ignored a message from an unknown connection: {}", why);
+    reply_error(id, why);
+    return false;
+  };
+  if (frames.size() != 2) return fail_or_ignore(fmt::format("malformed message of {} frames", frames.size() - 1));
+  std::string why;
+  auto e = coupling::decode(frames[1], why);
+  if (!e) return fail_or_ignore(why);
+  const auto& h = e->header();
+
+  if (e->has_heartbeat()) {
+    if (h.token() != opt_.token) return fail_or_ignore("heartbeat with a wrong run token");
+    if (h.sender() != pb::ROLE_FLUID && h.sender() != pb::ROLE_SOLID) return false;
+    Peer& p = peer(coupling::from_pb(h.sender()));
+    if (!p.connected) return false;
+    if (p.hb_id.empty()) p.hb_id = id;
+    if (id == p.hb_id || id == p.id) p.last_seen = now_s();
+    return false;
+  }
+  if (e->has_hello() && known == Role::Coupler) {
+    const std::string reason = check_hello(*e);
+    pb::Envelope w = coupling::make_envelope(Role::Coupler, h.token(), 0, 0.0);
+    auto* welcome = w.mutable_welcome();
+    welcome->set_accepted(reason.empty());
+    welcome->set_reason(reason);
+    welcome->set_heartbeat_interval(opt_.heartbeat_interval);
+    welcome->set_timeout(opt_.timeout);
+    welcome->set_mode(coupling::to_pb(opt_.mode));
+    if (!reason.empty()) {
+      sock_.send({id, coupling::encode(w)}, 500);
+      const std::string who = e->hello().program().empty() ? "a peer" : e->hello().program();
+      const std::string msg = fmt::format("refused {} (pid {}): {}", who, e->hello().pid(), reason);
+      if (!handshake_done_) throw coupling::Refused(msg);
+      spdlog::warn("{}", msg);  // a stranger during the run: refused, the run goes on
+      return false;
+    }
+    Peer& p = peer(coupling::from_pb(e->hello().role()));
+    p.connected = true;
+    p.id = id;
+    p.program = e->hello().program();
+    p.pid = e->hello().pid();
+    p.phase_names.assign(e->hello().phase_names().begin(), e->hello().phase_names().end());
+    p.last_seen = now_s();
+    p.hello = *e;
+    p.welcome = w;
+    if (!sock_.send({id, coupling::encode(w)}, 500))
+      throw PeerLost(p.describe(coupling::from_pb(e->hello().role())) + " vanished during the handshake");
+    spdlog::info("{} connected", p.describe(coupling::from_pb(e->hello().role())));
+    return false;
+  }
+  if (known == Role::Coupler) return fail_or_ignore(fmt::format("{} before Hello", coupling::body_name(*e)));
+
+  Peer& p = peer(known);
+  p.last_seen = now_s();
+  if (h.protocol_version() != coupling::kProtocolVersion)
+    fail_peer(known, fmt::format("sent {} with protocol version {}, expected {}", coupling::body_name(*e),
+                                 h.protocol_version(), coupling::kProtocolVersion));
+  if (h.token() != opt_.token) fail_peer(known, fmt::format("sent {} with a wrong run token", coupling::body_name(*e)));
+  if (e->has_error()) throw PeerLost(fmt::format("{} reported an error: {}", p.describe(known), e->error().reason()));
+  if (e->has_stop()) throw PeerLost(fmt::format("{} stopped: {}", p.describe(known), e->stop().reason()));
+  const std::string problem = coupling::validate(*e);
+  if (!problem.empty()) fail_peer(known, "sent an invalid message: " + problem);
+  p.busy += std::max(0.0, h.busy_seconds());
+  out = {known, std::move(*e)};
+  return true;
+}
+
+void Hub::beat_and_check() {
+  const double t = now_s();
+  if (t >= next_beat_) {
+    for (Role r : kRoles) {
+      const Peer& p = peer(r);
+      if (!p.connected || p.hb_id.empty()) continue;
+      pb::Envelope e = coupling::make_envelope(Role::Coupler, opt_.token, cycle_, time_);
+      e.mutable_heartbeat();
+      // ROUTER_MANDATORY: an unroutable heartbeat means the peer's connection is closed (process gone).
+      if (!sock_.send({p.hb_id, coupling::encode(e)}, 100))
+        throw PeerLost(fmt::format("{} declared dead: its connection closed", p.describe(r)));
+    }
+    next_beat_ = t + opt_.heartbeat_interval;
+  }
+  for (Role r : kRoles) {
+    const Peer& p = peer(r);
+    if (p.connected && t - p.last_seen > opt_.timeout)
+      throw PeerLost(fmt::format("{} declared dead: no message or heartbeat for {:.1f} s (timeout {:g} s)",
+                                 p.describe(r), t - p.last_seen, opt_.timeout));
+  }
+}
+
+Hub::Incoming Hub::next_data(const std::string&) {
+  Incoming in;
+  for (;;) {
+    if (app::interrupted()) throw coupling::CouplingError("coupler interrupted (SIGINT/SIGTERM)");
+    beat_and_check();
+    const int ms = static_cast<int>(std::clamp((next_beat_ - now_s()) * 1e3, 1.0, 50.0));
+    if (poll_once(ms, in)) return in;
+  }
+}
+
+void Hub::handshake() {
+  const double deadline = now_s() + opt_.connect_timeout;
+  Incoming in;
+  while (!peer(Role::Fluid).connected || !peer(Role::Solid).connected) {
+    if (app::interrupted()) throw coupling::CouplingError("coupler interrupted (SIGINT/SIGTERM)");
+    if (now_s() > deadline) {
+      std::vector<std::string> missing;
+      for (Role r : kRoles)
+        if (!peer(r).connected) missing.push_back(coupling::role_name(r));
+      throw PeerLost(fmt::format("no Hello from the {} within {:g} s on {}", fmt::join(missing, " and "),
+                                 opt_.connect_timeout, bound_));
+    }
+    beat_and_check();
+    if (poll_once(50, in))
+      fail_peer(in.from, fmt::format("sent {} before the run started", coupling::body_name(in.e)));
+  }
+  handshake_done_ = true;
+  if (transcript_)
+    for (Role r : kRoles) {  // in role order, whatever the order of arrival
+      transcript_->record("<-", r, peer(r).hello);
+      transcript_->record("->", r, peer(r).welcome);
+    }
+}
+
+void Hub::send(Role to, pb::Envelope& e) {
+  cycle_ = e.header().cycle();
+  time_ = e.header().time();
+  const Peer& p = peer(to);
+  if (!sock_.send({p.id, coupling::encode(e)}, 2000))
+    throw PeerLost(fmt::format("{} cannot be reached (connection closed) for {}", p.describe(to), coupling::body_name(e)));
+  if (transcript_) transcript_->record("->", to, e);
+}
+
+pb::Envelope Hub::expect(Role from, pb::Envelope::BodyCase kind, long cycle) {
+  Incoming in = next_data(coupling::body_name(kind));
+  if (in.from != from)
+    fail_peer(in.from, fmt::format("sent {} out of order: the coupler waits for {} from the {} in cycle {}",
+                                   coupling::body_name(in.e), coupling::body_name(kind), coupling::role_name(from), cycle));
+  if (in.e.body_case() != kind)
+    fail_peer(from, fmt::format("sent {} out of order: expected {} in cycle {}", coupling::body_name(in.e),
+                                coupling::body_name(kind), cycle));
+  if (in.e.header().cycle() != cycle)
+    fail_peer(from, fmt::format("sent {} for cycle {}, expected cycle {}", coupling::body_name(kind),
+                                in.e.header().cycle(), cycle));
+  if (transcript_) transcript_->record("<-", from, in.e);
+  return std::move(in.e);
+}
+
+std::array<pb::Envelope, 2> Hub::expect_both(pb::Envelope::BodyCase kind, long cycle) {
+  std::array<pb::Envelope, 2> got;
+  std::array<bool, 2> have{false, false};
+  while (!have[0] || !have[1]) {
+    Incoming in = next_data(coupling::body_name(kind));
+    const int i = index(in.from);
+    if (in.e.body_case() != kind || have[i] || in.e.header().cycle() != cycle)
+      fail_peer(in.from, fmt::format("sent {} (cycle {}) out of order: expected {} in cycle {}", coupling::body_name(in.e),
+                                     in.e.header().cycle(), coupling::body_name(kind), cycle));
+    have[i] = true;
+    got[i] = std::move(in.e);
+  }
+  if (transcript_)
+    for (Role r : kRoles) transcript_->record("<-", r, got[index(r)]);
+  return got;
+}
+
+void Hub::stop_all(const std::string& reason, bool failure) noexcept {
+  for (Role r : kRoles) {
+    try {
+      const Peer& p = peer(r);
+      if (!p.connected) continue;
+      pb::Envelope e = coupling::make_envelope(Role::Coupler, opt_.token, cycle_, time_);
+      e.mutable_stop()->set_reason(reason);
+      e.mutable_stop()->set_failure(failure);
+      sock_.send({p.id, coupling::encode(e)}, 200);
+      if (transcript_) transcript_->record("->", r, e);
+    } catch (...) {
+    }
+  }
+}
+
+}  // namespace cosim::coupler

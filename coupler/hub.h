@@ -1,0 +1,90 @@
+// The coupler's side of the connections: one ROUTER socket that both solvers' data and heartbeat connections
+// reach. Handshake checks, heartbeats both ways, liveness (a peer silent for longer than the timeout is declared
+// dead, naming it), typed receives that turn anything unexpected into an Error reply plus an exception.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/coupling/types.h"
+#include "common/coupling/zmq_socket.h"
+#include "coupler/transcript.h"
+#include "proto/coupling.pb.h"
+
+namespace cosim::coupler {
+
+struct HubOptions {
+  std::string endpoint;    // to bind: ipc://path or tcp://host:port (port * = any)
+  std::string token;
+  std::string scene_hash;
+  coupling::Mode mode = coupling::Mode::Impedance;
+  double timeout = 5.0;             // [s]
+  double heartbeat_interval = 0.5;  // [s]
+  double connect_timeout = 30.0;    // [s]
+};
+
+struct Peer {
+  bool connected = false;
+  std::string id, hb_id;  // ROUTER routing ids of the data and heartbeat connections
+  std::string program;
+  long pid = 0;
+  std::vector<std::string> phase_names;
+  double last_seen = 0;  // steady clock [s]
+  double busy = 0;       // sum of Header.busy_seconds received [s]
+  coupling::pb::Envelope hello, welcome;  // kept for the transcript
+  std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"
+};
+
+class Hub {
+ public:
+  explicit Hub(const HubOptions& o, Transcript* transcript = nullptr);
+  ~Hub();
+  const std::string& bound_endpoint() const { return bound_; }
+  const std::string& token() const { return opt_.token; }
+
+  // Waits for a valid Hello from the fluid and the solid (refusing wrong ones with a reason); throws
+  // coupling::Refused or PeerLost when the run cannot start.
+  void handshake();
+  // Sends to a peer; header filled by the hub (cycle, time).
+  void send(coupling::Role to, coupling::pb::Envelope& e);
+  // Next data message of `kind` from `from` for `cycle`; throws ProtocolError/PeerLost otherwise.
+  coupling::pb::Envelope expect(coupling::Role from, coupling::pb::Envelope::BodyCase kind, long cycle);
+  // One message of `kind` from each solver (any order), returned as {fluid, solid}.
+  std::array<coupling::pb::Envelope, 2> expect_both(coupling::pb::Envelope::BodyCase kind, long cycle);
+  // Stop to every connected peer (best effort).
+  void stop_all(const std::string& reason, bool failure) noexcept;
+
+  const Peer& peer(coupling::Role r) const { return peers_[index(r)]; }
+  Peer& peer(coupling::Role r) { return peers_[index(r)]; }
+  double wait_seconds() const { return wait_; }  // time spent blocked in receives [s]
+  // Replies Error to the peer and throws ProtocolError naming it.
+  [[noreturn]] void reject(coupling::Role r, const std::string& what) { fail_peer(r, what); }
+
+ private:
+  static int index(coupling::Role r) { return r == coupling::Role::Fluid ? 0 : 1; }
+  struct Incoming {
+    coupling::Role from;
+    coupling::pb::Envelope e;
+  };
+  // Blocks until a data message from a connected peer arrives (heartbeats and strangers handled inside).
+  Incoming next_data(const std::string& waiting_for);
+  bool poll_once(int timeout_ms, Incoming& out);
+  void beat_and_check();
+  void reply_error(const std::string& id, const std::string& reason);
+  std::string check_hello(const coupling::pb::Envelope& e) const;
+  [[noreturn]] void fail_peer(coupling::Role r, const std::string& what);
+
+  HubOptions opt_;
+  Transcript* transcript_;
+  coupling::ZmqContext ctx_;
+  coupling::ZmqSocket sock_{ctx_, coupling::ZmqSocket::Type::Router};
+  std::string bound_;
+  std::array<Peer, 2> peers_;
+  double next_beat_ = 0, wait_ = 0;
+  bool handshake_done_ = false;
+  long cycle_ = 0;
+  double time_ = 0;
+};
+
+}  // namespace cosim::coupler

@@ -1,0 +1,218 @@
+#include "launcher/launch.h"
+
+#include <arpa/inet.h>
+#include <fmt/format.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "common/config/config.h"
+#include "launcher/process.h"
+
+namespace fs = std::filesystem;
+
+namespace cosim::launcher {
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Progress from the coupler's progress.txt ("cycle t t_end").
+std::string progress_text(const fs::path& file, double elapsed) {
+  std::ifstream in(file);
+  long cycle = 0;
+  double t = 0, t_end = 0;
+  if (!(in >> cycle >> t >> t_end) || t_end <= 0) return fmt::format("starting ... {:.0f} s", elapsed);
+  return fmt::format("cycle {}  t = {:.6g} / {:.6g} s ({:.0f}%)  wall {:.0f} s", cycle, t, t_end, 100.0 * t / t_end,
+                     elapsed);
+}
+}  // namespace
+
+std::string make_token() {
+  std::random_device rd;
+  return fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
+}
+
+std::string ipc_endpoint(const fs::path& dir, const std::string& token) {
+  const fs::path p = fs::absolute(dir) / "coupler.sock";
+  if (p.string().size() < 100) return "ipc://" + p.string();
+  return "ipc:///tmp/cosim-" + token.substr(0, 16) + ".sock";  // sun_path holds 108 bytes
+}
+
+std::string tcp_endpoint(const std::string& host) {
+  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (s < 0) throw std::runtime_error(fmt::format("cannot open a socket: {}", std::strerror(errno)));
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = 0;
+  if (::inet_pton(AF_INET, host.c_str(), &a.sin_addr) != 1) {
+    ::close(s);
+    throw std::runtime_error(fmt::format("--tcp {}: not an IPv4 address", host));
+  }
+  socklen_t len = sizeof a;
+  if (::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+      ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+    const std::string err = std::strerror(errno);
+    ::close(s);
+    throw std::runtime_error(fmt::format("no free tcp port on {}: {}", host, err));
+  }
+  const int port = ntohs(a.sin_port);
+  ::close(s);
+  return fmt::format("tcp://{}:{}", host, port);
+}
+
+std::vector<std::string> split_command(const std::string& cmd) {
+  std::istringstream in(cmd);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+int run(const LaunchOptions& opt) {
+  // Scene: must parse; the solid: section decides between a coupled and a fluid-only run.
+  bool coupled = false;
+  std::string name;
+  try {
+    config::Node root = config::load_file(opt.scene, opt.overrides);
+    coupled = root.has("solid");
+    name = root.get<std::string>("name", fs::path(opt.scene).stem().string());
+    if (!root.has("fluid")) root.fail("fluid", "a fluid: section (every run has a fluid)");
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: " << e.what() << "\n";
+    return 2;
+  }
+  const fs::path out = opt.out.empty() ? fs::path("runs") / name : opt.out;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) {
+    std::cerr << fmt::format("cosim: {}: cannot create the run directory: {}\n", out.string(), ec.message());
+    return 2;
+  }
+  const fs::path scene = fs::absolute(out / "scene.yaml");
+  if (fs::absolute(opt.scene) != scene) fs::copy_file(opt.scene, scene, fs::copy_options::overwrite_existing, ec);
+  if (ec) {
+    std::cerr << fmt::format("cosim: cannot copy {} to {}: {}\n", opt.scene, scene.string(), ec.message());
+    return 2;
+  }
+  const std::string token = make_token();
+  std::string endpoint;
+  try {
+    endpoint = opt.tcp ? tcp_endpoint(opt.tcp_host) : ipc_endpoint(out, token);
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: " << e.what() << "\n";
+    return 2;
+  }
+
+  const auto command = [&](const std::string& given, const char* exe) {
+    std::vector<std::string> argv = split_command(given);
+    if (argv.empty()) argv.push_back((opt.bin_dir / exe).string());
+    return argv;
+  };
+  const auto with_common = [&](std::vector<std::string> argv, const char* sub, bool client) {
+    argv.push_back(scene.string());
+    argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
+    if (coupled) {
+      argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint, "--token", token});
+    }
+    for (const auto& o : opt.overrides) argv.insert(argv.end(), {"--set", o});
+    if (opt.quiet && !client) argv.push_back("--quiet");
+    return argv;
+  };
+  std::vector<Child> children;
+  if (coupled)
+    children.push_back({"coupler", with_common(command(opt.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
+  children.push_back({"fluid", with_common(command(opt.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
+  if (coupled)
+    children.push_back({"solid", with_common(command(opt.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
+
+  nlohmann::json launch;
+  launch["endpoint"] = coupled ? endpoint : "";
+  launch["coupled"] = coupled;
+  for (const auto& c : children) launch["commands"][c.name] = c.argv;
+  std::ofstream(out / "launch.json") << launch.dump(2) << "\n";
+
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  g_stop = false;
+
+  const auto stop_all = [&] {
+    for (auto& c : children) stop(c, 3.0);
+  };
+  try {
+    for (auto& c : children) start(c);
+  } catch (const std::exception& e) {
+    stop_all();
+    std::cerr << "cosim: " << e.what() << "\n";
+    return 2;
+  }
+  if (!opt.quiet)
+    std::cerr << fmt::format("cosim: {} run {} in {} ({})\n", coupled ? "coupled" : "fluid-only", name, out.string(),
+                             coupled ? endpoint : "no coupler");
+  const bool tty = ::isatty(STDERR_FILENO);
+  const double start_time = now_s();
+  double last_progress = 0;
+  int finished = 0;
+  const double grace = 10.0;  // after a clean exit, the others have this long to finish
+  double first_exit = 0;
+  while (finished < static_cast<int>(children.size())) {
+    if (g_stop) {
+      if (tty && !opt.quiet) std::cerr << "\n";
+      std::cerr << "cosim: interrupted: stopping all processes\n";
+      stop_all();
+      return 130;
+    }
+    for (auto& c : children) {
+      if (!poll(c)) continue;
+      ++finished;
+      if (first_exit == 0) first_exit = now_s();
+      if (c.exit_code != 0) {
+        if (tty && !opt.quiet) std::cerr << "\n";
+        stop_all();
+        std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", c.describe(), c.exit_code,
+                                 c.log.string(), tail(c.log, 15));
+        return c.exit_code;
+      }
+    }
+    if (first_exit > 0 && finished < static_cast<int>(children.size()) && now_s() - first_exit > grace) {
+      for (auto& c : children)
+        if (c.running) {
+          std::cerr << fmt::format("cosim: {} still running {:.0f} s after the others ended; stopping it\n",
+                                   c.describe(), grace);
+          stop_all();
+          std::cerr << tail(c.log, 15);
+          return 1;
+        }
+    }
+    if (!opt.quiet && now_s() - last_progress > 0.5) {
+      last_progress = now_s();
+      const std::string line = coupled ? progress_text(out / "coupler" / "progress.txt", now_s() - start_time)
+                                       : fmt::format("fluid running ... {:.0f} s", now_s() - start_time);
+      if (tty) std::cerr << "\r" << line << "\033[K" << std::flush;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (tty && !opt.quiet) std::cerr << "\n";
+  if (!opt.quiet) std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n",
+                                           now_s() - start_time, out.string());
+  return 0;
+}
+
+}  // namespace cosim::launcher

@@ -1,0 +1,36 @@
+// `cosim run`: one scene, three processes (or the fluid alone when the scene has no solid: section).
+// Run directory layout: scene.yaml (the copy every process reads), launch.json (commands and endpoint),
+// coupler.log / fluid.log / solid.log, and the processes' outputs in coupler/, fluid/, solid/.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cosim::launcher {
+
+struct LaunchOptions {
+  std::string scene;
+  std::filesystem::path out;            // run directory (default runs/<scene name>)
+  std::vector<std::string> overrides;   // --set
+  bool tcp = false;
+  std::string tcp_host = "127.0.0.1";
+  std::string fluid_cmd, solid_cmd, coupler_cmd;  // empty: <dir of cosim>/fluid_solver etc.; split on spaces
+  std::filesystem::path bin_dir;        // where the default executables are
+  bool quiet = false;
+};
+
+// Runs to completion; returns 0, or the failing process's exit code (1 when that is 0), 2 for bad input,
+// 130 when interrupted. Messages go to stderr.
+int run(const LaunchOptions& opt);
+
+// ipc://<dir>/coupler.sock, or ipc:///tmp/cosim-<token>.sock when that path is too long for a socket name.
+std::string ipc_endpoint(const std::filesystem::path& dir, const std::string& token);
+// tcp://host:port with a port that was free a moment ago.
+std::string tcp_endpoint(const std::string& host);
+// 32 random hex digits.
+std::string make_token();
+// Splits a command line on spaces (no quoting).
+std::vector<std::string> split_command(const std::string& cmd);
+
+}  // namespace cosim::launcher

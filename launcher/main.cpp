@@ -1,0 +1,38 @@
+// cosim run SCENE.yaml [--out DIR] [--set key=value ...] [--tcp [HOST]] [--fluid-exe CMD] [--solid-exe CMD]
+//                      [--coupler-exe CMD] [--quiet]
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <unistd.h>
+
+#include "launcher/launch.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"cosim: runs a scene's fluid solver, solid solver and coupler"};
+  app.require_subcommand(1);
+  auto* run = app.add_subcommand("run", "run a scene (fluid alone when it has no solid: section)");
+  cosim::launcher::LaunchOptions o;
+  std::string out;
+  run->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--out", out, "run directory (default runs/<scene name>)");
+  run->add_option("--set", o.overrides, "override a scene value: key.path=value (repeatable)");
+  auto* tcp = run->add_option("--tcp", o.tcp_host, "use tcp:// on HOST (default 127.0.0.1) instead of ipc://")
+                  ->expected(0, 1)
+                  ->default_str("127.0.0.1");
+  run->add_option("--fluid-exe", o.fluid_cmd, "fluid command (default: fluid_solver next to cosim)");
+  run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
+  run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
+  run->add_flag("--quiet", o.quiet, "no progress line");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  o.tcp = tcp->count() > 0;
+  if (o.tcp && o.tcp_host.empty()) o.tcp_host = "127.0.0.1";
+  o.out = out;
+  std::error_code ec;
+  auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  o.bin_dir = ec ? std::filesystem::path(argv[0]).parent_path() : self.parent_path();
+  return cosim::launcher::run(o);
+}

@@ -1,0 +1,202 @@
+// Coupler + scripted peers as separate processes: handshake, refusals on both sides, malformed bytes,
+// a killed peer, the protocol transcript.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <thread>
+
+#include "common/coupling/wire.h"
+#include "common/coupling/zmq_socket.h"
+#include "coupling_test_util.h"
+
+using namespace cosim;
+using namespace cosim::test;
+using launcher::Child;
+
+namespace {
+const char* kShort = "  time: {end: 1.0e-3}\n  output: {interval: 5.0e-4}\n  timeout: 2.0\n  connect_timeout: 5\n";
+const char* kLong = "  time: {end: 1.0e9}\n  timeout: 5.0\n";  // runs until stopped
+
+struct ThreeProcs {
+  fs::path dir, scene;
+  std::string ep;
+  std::vector<Child> cs;  // coupler, fluid, solid
+  ThreeProcs(const std::string& name, const std::string& coupling, std::vector<std::string> fluid_extra = {},
+      std::vector<std::string> solid_extra = {}, std::vector<std::string> coupler_extra = {}) {
+    dir = test_dir(name);
+    scene = write_scene(dir, coupling);
+    ep = "ipc://" + (dir / "c.sock").string();
+    cs.push_back(child("coupler", coupler_args(ep, scene, dir / "out", coupler_extra), dir));
+    cs.push_back(child("fluid", peer_args("fluid", ep, scene, fluid_extra), dir));
+    cs.push_back(child("solid", peer_args("solid", ep, scene, solid_extra), dir));
+    for (auto& c : cs) launcher::start(c);
+  }
+  std::string log(int i) const { return read_file(cs[i].log); }
+};
+}  // namespace
+
+TEST(CouplingProcesses, HandshakeAndShortRunComplete) {
+  ThreeProcs r("ok", kShort);
+  wait_all(r.cs, 20);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.cs[i].exit_code, 0) << r.cs[i].name << ":\n" << r.log(i);
+  EXPECT_NE(r.log(0).find("fluid (scripted_fluid, pid"), std::string::npos);
+  EXPECT_NE(r.log(1).find("stop: completed: t = 0.001 s"), std::string::npos) << r.log(1);
+  const std::string hist = read_file(r.dir / "out" / "interface_history.csv");
+  EXPECT_EQ(std::count(hist.begin(), hist.end(), '\n'), 1 + 11) << hist;  // header + cycles 0..10
+}
+
+TEST(CouplingProcesses, VersionMismatchRefusedOnBothSides) {
+  ThreeProcs r("version", kShort, {"--protocol-version", "99"});
+  wait_all(r.cs, 20);
+  EXPECT_EQ(r.cs[0].exit_code, 5);
+  EXPECT_EQ(r.cs[1].exit_code, 5);
+  EXPECT_NE(r.cs[2].exit_code, 0);
+  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version 1";
+  EXPECT_NE(r.log(0).find(expected), std::string::npos) << r.log(0);
+  EXPECT_NE(r.log(1).find("refused fluid: " + expected), std::string::npos) << r.log(1);
+  // The solid is told why when it had connected before the refusal, otherwise it gets no Welcome.
+  EXPECT_TRUE(r.log(2).find("coupler stopped the run: coupler: refused scripted_fluid") != std::string::npos ||
+              r.log(2).find("no Welcome from the coupler") != std::string::npos)
+      << r.log(2);
+}
+
+TEST(CouplingProcesses, WrongTokenAndSceneHashRefused) {
+  ThreeProcs r("token", kShort, {"--token", "forged"});
+  wait_all(r.cs, 20);
+  EXPECT_EQ(r.cs[0].exit_code, 5);
+  EXPECT_EQ(r.cs[1].exit_code, 5);
+  EXPECT_NE(r.log(0).find("wrong run token"), std::string::npos) << r.log(0);
+  EXPECT_NE(r.log(1).find("refused fluid: wrong run token"), std::string::npos) << r.log(1);
+
+  ThreeProcs h("hash", kShort, {}, {"--set", "coupling.mode=standard"});
+  wait_all(h.cs, 20);
+  EXPECT_EQ(h.cs[0].exit_code, 5);
+  EXPECT_EQ(h.cs[2].exit_code, 5);
+  EXPECT_NE(h.log(2).find("refused solid: scene hash"), std::string::npos) << h.log(2);
+}
+
+TEST(CouplingProcesses, MalformedBytesGetAnErrorReplyAndNoCrash) {
+  const fs::path dir = test_dir("malformed");
+  const fs::path scene = write_scene(dir, kShort);
+  const std::string ep = "ipc://" + (dir / "c.sock").string();
+  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out"), dir)};
+  launcher::start(cs[0]);
+  coupling::ZmqContext ctx;
+  coupling::ZmqSocket s(ctx, coupling::ZmqSocket::Type::Dealer);
+  s.connect(ep);
+  ASSERT_TRUE(s.send({std::string("\xff\xff garbage \x01", 12)}));
+  coupling::Frames f;
+  ASSERT_TRUE(s.receive(f, 5000)) << "no Error reply";
+  std::string why;
+  auto e = coupling::decode(f.at(0), why);
+  ASSERT_TRUE(e.has_value()) << why;
+  ASSERT_TRUE(e->has_error());
+  EXPECT_NE(e->error().reason().find("malformed message (12 bytes)"), std::string::npos) << e->error().reason();
+  // A stranger's garbage does not end the run: the solvers can still connect and finish.
+  std::vector<Child> peers{child("fluid", peer_args("fluid", ep, scene), dir), child("solid", peer_args("solid", ep, scene), dir)};
+  for (auto& c : peers) launcher::start(c);
+  cs.insert(cs.end(), peers.begin(), peers.end());
+  wait_all(cs, 20);
+  for (auto& c : cs) EXPECT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
+}
+
+TEST(CouplingProcesses, KilledPeerDetectedWithin5sAndEveryoneStops) {
+  ThreeProcs r("killed", kLong);
+  // Let the run go for a while, then kill the fluid without warning.
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  ASSERT_TRUE(r.cs[0].running && r.cs[1].running && r.cs[2].running) << r.log(0) << r.log(1) << r.log(2);
+  ::kill(r.cs[1].pid, SIGKILL);
+  const double waited = wait_all(r.cs, 8.0);
+  EXPECT_LT(waited, 5.0) << "coupler detection + stop took " << waited << " s";
+  EXPECT_EQ(r.cs[0].exit_code, 5);
+  EXPECT_NE(r.cs[2].exit_code, 0);
+  EXPECT_NE(r.log(0).find("fluid (scripted_fluid, pid " + std::to_string(r.cs[1].pid) + ")"), std::string::npos)
+      << r.log(0);
+  EXPECT_NE(r.log(2).find("fluid (scripted_fluid"), std::string::npos) << r.log(2);  // the solid is told who
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
+  std::cout << "[ info ] killed fluid: coupler and solid stopped after " << waited << " s\n";
+}
+
+TEST(CouplingProcesses, ProtocolTranscriptOfTheFirstCycles) {
+  // Deterministic scripted peers, 3 cycles; any change of what crosses the wire changes this text.
+  // Regenerate on purpose with COSIM_UPDATE_TRANSCRIPT=1 and review the diff.
+  const fs::path dir = test_dir("transcript");
+  const fs::path scene = write_scene(dir, "  mode: impedance\n  time: {end: 3.0e-4}\n  output: {interval: 2.0e-4}\n");
+  const std::string ep = "ipc://" + (dir / "c.sock").string();
+  const fs::path got = dir / "transcript.txt";
+  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out", {"--transcript", got.string()}), dir),
+                        child("fluid", peer_args("fluid", ep, scene, {"--phases", "2", "--pressure-gradient", "1e4"}), dir),
+                        child("solid", peer_args("solid", ep, scene, {"--impedance", "1000", "--velocity", "2"}), dir)};
+  for (auto& c : cs) launcher::start(c);
+  wait_all(cs, 20);
+  for (auto& c : cs) ASSERT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
+  const fs::path expected = fs::path(COSIM_SOURCE_DIR) / "tests/coupling/data/transcript_scripted.txt";
+  if (std::getenv("COSIM_UPDATE_TRANSCRIPT")) fs::copy_file(got, expected, fs::copy_options::overwrite_existing);
+  const std::string a = read_file(expected), b = read_file(got);
+  EXPECT_EQ(a, b) << "the protocol transcript changed: diff " << expected << " " << got
+                  << " (COSIM_UPDATE_TRANSCRIPT=1 accepts it)";
+}
+
+TEST(CouplingProcesses, HungPeerDetectedByHeartbeatTimeout) {
+  // SIGSTOP: the connection stays open but nothing answers; declared dead after the scene's timeout (2 s here).
+  ThreeProcs r("hung", "  time: {end: 1.0e9}\n  timeout: 2.0\n");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_TRUE(r.cs[0].running && r.cs[2].running) << r.log(0);
+  ::kill(r.cs[2].pid, SIGSTOP);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (r.cs[0].running && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(6)) {
+    launcher::poll(r.cs[0]);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(r.cs[0].running);
+  EXPECT_LT(waited, 2.6);
+  EXPECT_NE(r.log(0).find("solid (scripted_solid, pid " + std::to_string(r.cs[2].pid) + ") declared dead: no message "
+                          "or heartbeat for 2.0 s (timeout 2 s)"),
+            std::string::npos)
+      << r.log(0);
+  ::kill(r.cs[2].pid, SIGKILL);
+  wait_all(r.cs, 5);
+  EXPECT_NE(r.cs[1].exit_code, 0);
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
+}
+
+TEST(CouplingProcesses, ExchangeLatencyAgainstABareRoundTrip) {
+  // Bare ZeroMQ DEALER/ROUTER round trip over ipc:// in one process, then 2000 coupled cycles of the scripted
+  // peers (4 sequential exchanges per cycle: decision->faces, faces->samples, samples->states, states->dt).
+  const fs::path dir = test_dir("latency");
+  const std::string ep = "ipc://" + (dir / "bare.sock").string();
+  double bare = 0;
+  {
+    coupling::ZmqContext ctx;
+    coupling::ZmqSocket router(ctx, coupling::ZmqSocket::Type::Router), dealer(ctx, coupling::ZmqSocket::Type::Dealer);
+    router.bind(ep);
+    dealer.connect(ep);
+    std::thread echo([&] {
+      coupling::Frames f;
+      for (int i = 0; i < 2100; ++i) {
+        router.receive(f, 5000);
+        router.send(f);
+      }
+    });
+    coupling::Frames f;
+    std::chrono::steady_clock::time_point t0;
+    for (int i = 0; i < 2100; ++i) {
+      if (i == 100) t0 = std::chrono::steady_clock::now();
+      dealer.send({std::string(64, 'x')});
+      dealer.receive(f, 5000);
+    }
+    bare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 2000;
+    echo.join();
+  }
+  ThreeProcs r("latency", "  time: {end: 0.2}\n", {"--dt", "1e-4"}, {"--dt", "1e-4"});
+  wait_all(r.cs, 30);
+  ASSERT_EQ(r.cs[0].exit_code, 0) << r.log(0);
+  const std::string s = read_file(r.dir / "out" / "coupler_summary.json");
+  const auto at = s.find("\"comm\": ");
+  ASSERT_NE(at, std::string::npos) << s;
+  const double comm = std::stod(s.substr(at + 8));
+  std::cout << "[ info ] bare round trip " << bare * 1e6 << " us; coupled cycle communication " << comm * 1e6
+            << " us = " << comm / 4 * 1e6 << " us per exchange (" << comm / 4 / bare << "x bare)\n";
+  EXPECT_LT(comm, 0.01);  // sanity: far below a millisecond per exchange on an idle machine
+}

@@ -1,0 +1,92 @@
+// Envelope validation, conversions and the scene hash shared with Python.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "common/coupling/scene_hash.h"
+#include "common/coupling/wire.h"
+#include "coupling_test_util.h"
+
+using namespace cosim::coupling;
+
+namespace {
+Faces two_faces() {
+  Faces f;
+  f.dim = 2;
+  f.count = 2;
+  f.centre = {0, 0, 1, 0};
+  f.normal = {-1, 0, 1, 0};
+  f.area = {1, 1};
+  f.velocity = {0, 0, 0, 0};
+  f.normal_stress = {0, 0};
+  f.impedance = {std::numeric_limits<double>::infinity(), 5.0};
+  return f;
+}
+}  // namespace
+
+TEST(CouplingWire, FacesRoundTripAndValidate) {
+  pb::Envelope e = make_envelope(Role::Solid, "t", 3, 0.5);
+  to_pb(two_faces(), *e.mutable_faces());
+  EXPECT_EQ(validate(e), "");
+  std::string why;
+  auto back = decode(encode(e), why);
+  ASSERT_TRUE(back) << why;
+  const Faces f = from_pb(back->faces());
+  EXPECT_EQ(f.count, 2);
+  EXPECT_EQ(f.impedance[0], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(back->header().cycle(), 3);
+  EXPECT_EQ(back->header().protocol_version(), kProtocolVersion);
+
+  e.mutable_faces()->mutable_normal()->RemoveLast();
+  EXPECT_EQ(validate(e), "InterfaceFaces.normal: 3 values, expected dim * count = 4");
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_area(1, std::nan(""));
+  EXPECT_EQ(validate(e), "InterfaceFaces.area[1]: nan is not a finite number");
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_impedance(1, -1.0);
+  EXPECT_EQ(validate(e), "InterfaceFaces.impedance[1]: -1, expected > 0");
+}
+
+TEST(CouplingWire, SamplesAndDtValidation) {
+  pb::Envelope e = make_envelope(Role::Fluid, "t", 0, 0.0);
+  FluidSamples s;
+  s.count = 2;
+  s.phases = 2;
+  s.alpha = s.rho = s.normal_velocity = s.pressure = s.impedance = std::vector<double>(4, 1.0);
+  s.wetted = {1, 1};
+  to_pb(s, *e.mutable_samples());
+  EXPECT_EQ(validate(e), "");
+  e.mutable_samples()->mutable_pressure()->Add(1.0);
+  EXPECT_EQ(validate(e), "FluidSamples.pressure: 5 values, expected count * phases = 4");
+  pb::Envelope d = make_envelope(Role::Fluid, "t", 0, 0.0);
+  d.mutable_dt_proposal()->set_dt(0.0);
+  EXPECT_EQ(validate(d), "DtProposal.dt: 0, expected a finite number > 0");
+}
+
+TEST(CouplingWire, GarbageIsNotAnEnvelope) {
+  std::string why;
+  EXPECT_FALSE(decode(std::string("\xff\xff\xff", 3), why));
+  EXPECT_EQ(why, "malformed message (3 bytes): not a cosim Envelope");
+  EXPECT_FALSE(decode("", why));  // parses, but has no header
+  EXPECT_EQ(why, "malformed message (0 bytes): Envelope.header missing");
+}
+
+TEST(CouplingWire, SceneHashIsStableAndSharedWithPython) {
+  EXPECT_EQ(scene_hash_of_text("", {}), "cbf29ce484222325");
+  const auto dir = cosim::test::test_dir("hash");
+  const auto scene = dir / "s.yaml";
+  std::ofstream(scene) << "coupling: {time: {end: 1}}\n";
+  const std::string cpp = scene_hash(scene.string(), {"a.b=1"});
+  EXPECT_NE(cpp, scene_hash(scene.string(), {}));
+  const std::string cmd = "cd " + cosim::test::python_dir().string() +
+                          " && /usr/bin/python3 -c \"import cosim_client as c; print(c.scene_hash('" + scene.string() +
+                          "', ['a.b=1']))\"";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[64] = {};
+  ASSERT_NE(fgets(buf, sizeof buf, p), nullptr);
+  pclose(p);
+  EXPECT_EQ(std::string(buf), cpp + "\n");
+}
