@@ -1,0 +1,96 @@
+// Embedded bodies with prescribed rigid motion (the scene's `fluid.embedded.bodies`): each cycle
+// the surface is placed at the current time, the geometry is rebuilt (paper section 6), converted
+// to the solver's EmbeddedState and handed over; after the step the surface moves by dt.
+// A decorator around the flow solver: in coupled runs the coupler feeds set_embedded instead.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "fluid_solver/core/grid.h"
+#include "fluid_solver/core/simulation.h"
+#include "fluid_solver/core/wall_faces.h"
+#include "fluid_solver/embedded/geometry.h"
+#include "fluid_solver/embedded/scene_bodies.h"
+
+namespace cosim::fluid {
+
+// The solver's view of one cycle's geometry.
+template <int DIM>
+EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
+                                const embedded::EmbeddedGeometry<DIM>& geo) {
+  EmbeddedState e;
+  e.active = true;
+  e.kind = geo.category;
+  e.ghosts.reserve(geo.image_points.size());
+  for (const auto& ip : geo.image_points) {
+    GhostRecord r;
+    r.cell = ip.cell;
+    for (int d = 0; d < 3; ++d) {
+      r.normal[d] = ip.normal[d];
+      r.wall_velocity[d] = ip.wall_velocity[d];
+    }
+    r.distance = -ip.phi;
+    r.image_distance = ip.image_distance;
+    r.stencil_size = ip.stencil_size;
+    r.stencil = ip.stencil;
+    r.weights = ip.weights;
+    e.ghosts.push_back(r);
+  }
+  build_wall_faces<DIM>(g, geo.centres.phi, e);
+  for (const auto& v : s.velocities) {
+    double q = 0;
+    for (int d = 0; d < DIM; ++d) q += v[d] * v[d];
+    e.max_wall_speed = std::max(e.max_wall_speed, std::sqrt(q));
+  }
+  return e;
+}
+
+template <int DIM>
+class EmbeddedBodiesRun final : public FluidSimulation {
+ public:
+  EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
+      : inner_(std::move(inner)), g_(s.cells, s.lower, s.upper), surface_(embedded::surface_of(s.embedded, DIM)),
+        second_order_(s.embedded.second_order) {
+    opt_.band_cells = s.embedded.band;
+    update();
+  }
+
+  const FluidScene& scene() const override { return inner_->scene(); }
+  double time() const override { return inner_->time(); }
+  long steps() const override { return inner_->steps(); }
+  double stable_dt() override { return inner_->stable_dt(); }
+  void advance(double dt) override {
+    inner_->advance(dt);
+    embedded::move_surface(surface_, dt);
+    update();
+  }
+  PhaseFields phase_fields(int k) const override { return inner_->phase_fields(k); }
+  std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
+  std::size_t interior_cells() const override { return inner_->interior_cells(); }
+  std::size_t state_bytes() const override { return inner_->state_bytes(); }
+  void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
+  const EmbeddedState& embedded() const override { return inner_->embedded(); }
+  std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
+  double geometry_seconds() const { return geometry_seconds_; }
+
+ private:
+  // Geometry of the surface at the current time -> the solver (throws for thin bodies etc.).
+  void update() {
+    const auto t0 = std::chrono::steady_clock::now();
+    embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
+    inner_->set_embedded(to_embedded_state<DIM>(g_, surface_, geo_), second_order_);
+    geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  std::unique_ptr<FluidSimulation> inner_;
+  Grid<DIM> g_;
+  embedded::Surface surface_;
+  embedded::GeometryOptions opt_;
+  embedded::EmbeddedGeometry<DIM> geo_;
+  bool second_order_;
+  double geometry_seconds_ = 0;
+};
+
+}  // namespace cosim::fluid
