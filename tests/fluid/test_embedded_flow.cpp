@@ -175,3 +175,37 @@ TEST(EmbeddedFlow, MovingPistonDiagonalSecondOrderBoundaryIsMoreAccurate) {
 
 }  // namespace
 }  // namespace cosim::fluid::test
+
+namespace cosim::fluid::test {
+namespace {
+
+// Mach 3 flow past a cylinder: the bow shock's stand-off distance on the stagnation line against
+// Billig's correlation for cylinders, delta / R = 0.386 exp(4.67 / M^2) = 0.648 at M = 3.
+TEST(EmbeddedFlow, SupersonicCylinderBowShockStandOff) {
+  const double R = 0.4;
+  FluidScene s = load_fluid_scene(std::string(COSIM_SOURCE_DIR) + "/configs/supersonic_cylinder.yaml",
+                                  {"fluid.mesh.cells=[160, 160]", "fluid.time.end=2.0",
+                                   "fluid.embedded.bodies.0.radius=" + std::to_string(R),
+                                   "fluid.embedded.bodies.0.center=[1.3, 1.0]"});
+  auto sim = make_simulation(s);
+  advance_to(*sim, s.t_end);
+  PhaseFields f = sim->phase_fields(0);
+  // Stagnation line y = 1: the shock is where the pressure first exceeds the mean of the free
+  // stream and the post-normal-shock pressures (1 and 10.33 for M = 3), coming from upstream.
+  const int N = 160, j = N / 2;
+  const double p_mid = 0.5 * (1.0 + 10.333);
+  double x_shock = 0;
+  for (int i = 0; i < N; ++i) {
+    const double p0 = f.p[static_cast<std::size_t>(j) * N + i], p1 = f.p[static_cast<std::size_t>(j) * N + i + 1];
+    if (p0 < p_mid && p1 >= p_mid) {
+      x_shock = (i + 0.5 + (p_mid - p0) / (p1 - p0)) * 2.0 / N;
+      break;
+    }
+  }
+  const double delta = (1.3 - R) - x_shock, billig = 0.386 * std::exp(4.67 / 9.0) * R;
+  std::printf("Mach 3 cylinder: stand-off %.4f (Billig %.4f, %.1f%%)\n", delta, billig, 100 * (delta - billig) / billig);
+  EXPECT_NEAR(delta, billig, 0.06 * billig);
+}
+
+}  // namespace
+}  // namespace cosim::fluid::test
