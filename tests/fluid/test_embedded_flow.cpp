@@ -209,3 +209,44 @@ TEST(EmbeddedFlow, SupersonicCylinderBowShockStandOff) {
 
 }  // namespace
 }  // namespace cosim::fluid::test
+
+namespace cosim::fluid::test {
+namespace {
+
+// Enstrophy sum(omega^2) dA over flow cells whose four neighbours are flow cells.
+double enstrophy(const FluidSimulation& sim, int nx, int ny, double dx, double dy) {
+  PhaseFields f = sim.phase_fields(0);
+  auto kind = sim.embedded_categories();
+  double z = 0;
+  auto at = [&](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
+  for (int j = 1; j + 1 < ny; ++j)
+    for (int i = 1; i + 1 < nx; ++i) {
+      if (kind[at(i, j)] > 1 || kind[at(i + 1, j)] > 1 || kind[at(i - 1, j)] > 1 || kind[at(i, j + 1)] > 1 ||
+          kind[at(i, j - 1)] > 1)
+        continue;
+      const double w = (f.velocity[3 * at(i + 1, j) + 1] - f.velocity[3 * at(i - 1, j) + 1]) / (2 * dx) -
+                       (f.velocity[3 * at(i, j + 1)] - f.velocity[3 * at(i, j - 1)]) / (2 * dy);
+      z += w * w * dx * dy;
+    }
+  return z;
+}
+
+// Paper 9.1, small: Mach 0.05 flow over a step. With the low-Mach correction the scheme keeps far
+// more of the vorticity shed at the step's corner.
+TEST(EmbeddedFlow, LowMachStepKeepsVorticityWithCorrection) {
+  double z[2];
+  for (int lm = 0; lm < 2; ++lm) {
+    FluidScene s = load_fluid_scene(std::string(COSIM_SOURCE_DIR) + "/configs/low_mach_step.yaml",
+                                    {"fluid.mesh.cells=[160, 80]", "fluid.time.end=6.0", "fluid.output.interval=0",
+                                     std::string("fluid.numerics.low_mach=") + (lm ? "true" : "false")});
+    auto sim = make_simulation(s);
+    advance_to(*sim, s.t_end);
+    z[lm] = enstrophy(*sim, 160, 80, 2.0 / 160, 1.0 / 80);
+  }
+  std::printf("low-Mach step (160 x 80, t = 6): enstrophy %.4e without, %.4e with the correction (x%.2f)\n", z[0],
+              z[1], z[1] / z[0]);
+  EXPECT_GT(z[1], 1.2 * z[0]);  // measured x1.32 at this size
+}
+
+}  // namespace
+}  // namespace cosim::fluid::test
