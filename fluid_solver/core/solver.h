@@ -262,7 +262,6 @@ class Solver final : public FluidSimulation {
     bc_.fill(W_);
     if (emb_.active) fill_ghost_cells<DIM, NP>(emb_, W_);
     residual();
-    if (emb_.active) freeze_non_flow_cells();
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
@@ -277,10 +276,19 @@ class Solver final : public FluidSimulation {
         double* u = Uv[v] + base;
         const double* u0 = U0v[v] + base;
         const double* r = Rv[v] + base;
-        if (a == 0.0)
+        if (emb_.active) {
+          // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
+          // the interior of a body is never read (fused here: no extra pass over the grid).
+          const std::uint8_t* kind = emb_.kind.data() + base;
+          for (int i = 0; i < len; ++i) {
+            const double un = a * u0[i] + b * (u[i] + dt * r[i]);
+            u[i] = is_flow_cell(kind[i]) ? un : u[i];
+          }
+        } else if (a == 0.0) {
           for (int i = 0; i < len; ++i) u[i] += dt * r[i];
-        else
+        } else {
           for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+        }
       }
       if constexpr (NP == 2) {
         const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
@@ -289,19 +297,6 @@ class Solver final : public FluidSimulation {
         else if (vrelax) relax_row<true, false>(base, len);
         else if (prelax) relax_row<false, true>(base, len);
         else relax_row<false, false>(base, len);
-      }
-    }, dummy);
-  }
-
-  // Ghost, solid-cut and solid cells are not advanced by the flow equations: their residual is
-  // zeroed, so every Runge-Kutta stage leaves them unchanged (their states come from step 3).
-  void freeze_non_flow_cells() {
-    const std::uint8_t* kind = emb_.kind.data();
-    double dummy = 0;
-    for_each_row([&](std::size_t base, int len, double&) {
-      for (int v = 0; v < Lay::kCons; ++v) {
-        double* r = R_.var(v) + base;
-        for (int i = 0; i < len; ++i) r[i] = is_flow_cell(kind[base + i]) ? r[i] : 0.0;
       }
     }, dummy);
   }
