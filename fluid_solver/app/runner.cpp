@@ -38,7 +38,28 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["cell_updates_per_s"] = rec.wall > 0 ? updates / rec.wall : 0.0;
   j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());
   j["threads"] = omp_get_max_threads();
-  j["totals"] = {{"start", rec.start_totals}, {"end", totals_json(s, sim.totals())}};
+  const nlohmann::json end_totals = totals_json(s, sim.totals());
+  j["totals"] = {{"start", rec.start_totals}, {"end", end_totals}};
+  if (sim.embedded().active) {
+    // The embedded boundary is not conservative: what the flow cells gained or lost. In a closed or
+    // periodic domain this is exactly what crossed the moving boundary (cells covered or uncovered
+    // by the body, and the ghost-cell wall treatment).
+    nlohmann::json change = nlohmann::json::array();
+    for (std::size_t k = 0; k < end_totals.size(); ++k) {
+      const auto &a = rec.start_totals[k], &b = end_totals[k];
+      change.push_back({{"phase", b["phase"]},
+                        {"mass", b["mass"].get<double>() - a["mass"].get<double>()},
+                        {"momentum",
+                         {b["momentum"][0].get<double>() - a["momentum"][0].get<double>(),
+                          b["momentum"][1].get<double>() - a["momentum"][1].get<double>(),
+                          b["momentum"][2].get<double>() - a["momentum"][2].get<double>()}},
+                        {"energy", b["energy"].get<double>() - a["energy"].get<double>()}});
+    }
+    j["embedded"] = {{"bodies", s.embedded.bodies.size()},
+                     {"boundary_order", s.embedded.second_order ? 2 : 1},
+                     {"ghost_and_solid_cut_cells", sim.embedded().ghosts.size()},
+                     {"flow_totals_change", change}};
+  }
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 }  // namespace
