@@ -103,6 +103,14 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
       detail::build_stencil(C, category, ip, flow_weight);
       if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) break;
     }
+    bool outside = false;  // a ghost layer of the domain: its boundary condition applies there
+    for (int d = 0; d < DIM; ++d)
+      outside = outside || ip.ijk[static_cast<std::size_t>(d)] < 0 || ip.ijk[static_cast<std::size_t>(d)] >= g.n[static_cast<std::size_t>(d)];
+    if (!(flow_weight > 0) && outside) {
+      ip.stencil_size = 0;  // the ghost fill leaves the cell to the domain boundary condition
+      out.push_back(ip);
+      continue;
+    }
     if (!(flow_weight > 0)) {
       std::ostringstream msg;
       msg << "embedded geometry: no fluid cell around the image point of cell (" << ip.ijk[0] << ", " << ip.ijk[1] << ", " << ip.ijk[2]

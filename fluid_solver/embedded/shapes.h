@@ -15,15 +15,14 @@ namespace cosim::fluid::embedded {
 
 using Point2 = std::array<double, 2>;
 
-// Rotates the vertices (and velocities) by `deg` degrees about the z axis through `pivot`.
+// Rotates the vertices by `deg` degrees about the z axis through `pivot`; velocities stay lab-frame.
 inline void rotate_z(Surface& s, const Vec3& pivot, double deg) {
   if (deg == 0) return;
   const double a = deg * std::numbers::pi / 180, c = std::cos(a), sn = std::sin(a);
   for (std::size_t i = 0; i < s.vertices.size(); ++i) {
     const Vec3 r = s.vertices[i] - pivot;
     s.vertices[i] = pivot + Vec3{c * r[0] - sn * r[1], sn * r[0] + c * r[1], r[2]};
-    const Vec3 v = s.velocities[i];
-    s.velocities[i] = {c * v[0] - sn * v[1], sn * v[0] + c * v[1], v[2]};
+    // velocities stay as given: a scene's body velocity is in the lab frame
   }
 }
 
