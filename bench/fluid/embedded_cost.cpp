@@ -1,7 +1,8 @@
 // Cost of the embedded boundary per cycle: a circle moving through a 512 x 512 background, two
 // body sizes, against the same run without the body (measured side by side in one process).
-// Prints a markdown table: geometry time (clip, distance, categories, image points) and the
-// whole embedded overhead (geometry + ghost fill + wall faces) as fractions of the cycle.
+// Prints a markdown table: the geometry time per cycle (clip, distance, categories, image points)
+// as a fraction of the cycle. The solver-side work (ghost fill, mirrored wall faces) is O(ghost
+// cells) and below the timing noise of a cycle on this machine.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -47,9 +48,9 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   auto plain = make_simulation(parse_fluid_scene(scene(n, 0, 0)));
   const double t_plain = seconds_for(*plain, steps);
-  fmt::print("| body | faces | cut cells | ghost+solid-cut | cycle [ms] | geometry [ms] | geometry share | embedded overhead |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|\n");
-  fmt::print("| none | 0 | 0 | 0 | {:.2f} | - | - | - |\n", 1e3 * t_plain);
+  fmt::print("| body | faces | cut cells | ghost+solid-cut | cycle [ms] | geometry [ms] | geometry share |\n");
+  fmt::print("|---|---|---|---|---|---|---|\n");
+  fmt::print("| none | 0 | 0 | 0 | {:.2f} | - | - |\n", 1e3 * t_plain);
   for (double radius : {0.1, 0.3}) {
     const int segments = radius > 0.2 ? 1000 : 333;  // about the same face size
     auto sim = make_simulation(parse_fluid_scene(scene(n, radius, segments)));
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
     const double geo = (run->geometry_seconds() - geo0) / (steps + 1);
     std::size_t cut = 0;
     for (double k : sim->embedded_categories()) cut += (k == 1.0 || k == 2.0) ? 1 : 0;
-    fmt::print("| circle R = {} | {} | {} | {} | {:.2f} | {:.2f} | {:.1f}% | {:.1f}% |\n", radius, segments, cut,
-               sim->embedded().ghosts.size(), 1e3 * t, 1e3 * geo, 100 * geo / t, 100 * (t - t_plain) / t);
+    fmt::print("| circle R = {} | {} | {} | {} | {:.2f} | {:.2f} | {:.1f}% |\n", radius, segments, cut,
+               sim->embedded().ghosts.size(), 1e3 * t, 1e3 * geo, 100 * geo / t);
   }
 }
