@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fmt/format.h>
+#include <string>
 #include <memory>
 
 #include "fluid_solver/core/grid.h"
@@ -74,6 +76,14 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
   double geometry_seconds() const { return geometry_seconds_; }
+  std::string interface_segments_csv() const override {
+    std::string out = "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz\n";
+    for (const auto& sg : geo_.segments)
+      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", sg.ijk[0],
+                         sg.ijk[1], sg.ijk[2], sg.center[0], sg.center[1], sg.center[2], sg.normal[0], sg.normal[1],
+                         sg.normal[2], sg.area, sg.velocity[0], sg.velocity[1], sg.velocity[2]);
+    return out;
+  }
 
  private:
   // Geometry of the surface at the current time -> the solver (throws for thin bodies etc.).

@@ -54,6 +54,9 @@ class FluidSimulation {
   virtual const EmbeddedState& embedded() const = 0;
   // CellKind of every interior cell (i fastest) as numbers, for output.
   virtual std::vector<double> embedded_categories() const = 0;
+  // Interface segments of this cycle (paper section 6), for output: one line per piece of the body
+  // surface clipped to a cell, "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz" (CSV, SI). Empty without bodies.
+  virtual std::string interface_segments_csv() const { return {}; }
 };
 
 std::unique_ptr<FluidSimulation> make_simulation(const FluidScene& scene);

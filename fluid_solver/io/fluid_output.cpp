@@ -1,5 +1,9 @@
 #include "fluid_solver/io/fluid_output.h"
 
+#include <fmt/format.h>
+
+#include "common/io/atomic_file.h"
+
 namespace cosim::fluid {
 
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
@@ -42,7 +46,11 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
   }
   io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
-  series.write(sim.time(), sim.steps(), g, views);
+  const std::size_t index = series.count();
+  const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, views);
+  const std::string segments = sim.interface_segments_csv();
+  if (!segments.empty())  // the embedded interface of this snapshot (ParaView: CSV reader + Table To Points)
+    io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index), segments);
 }
 
 nlohmann::json totals_json(const FluidScene& scene, const std::vector<PhaseTotals>& totals) {

@@ -361,6 +361,25 @@ fluid:
   std::printf("flow cells: mass change %.3e of %.4f, energy change %.5f (piston work %.5f)\n", dm, m0, de, work);
   EXPECT_LT(std::abs(dm), 1e-3 * m0);
   EXPECT_NEAR(de, work, 0.05 * work);
+  // The interface segments of every snapshot are written next to it: the piston face x = 1.4 at
+  // t = 0.5 spans the domain height (plus the ghost layers): 1 + 4 dy of segments with normal -x.
+  std::ifstream seg(dir / "out" / "fluid_interface_000001.csv");
+  std::string line;
+  std::getline(seg, line);
+  EXPECT_EQ(line, "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz");
+  double length = 0;
+  while (std::getline(seg, line)) {
+    double v[13];
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3],
+                          &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &v[10], &v[11], &v[12]),
+              13);
+    if (v[6] < -0.99) {
+      EXPECT_NEAR(v[3], 1.4, 1e-9);
+      EXPECT_NEAR(v[10], -0.2, 1e-12);
+      length += v[9];
+    }
+  }
+  EXPECT_NEAR(length, 1.0 + 4 * 0.05, 1e-9);
   std::filesystem::remove_all(dir);
 }
 
