@@ -128,11 +128,11 @@ TEST(EmbeddedFlow, ReflectedShockOffAngledWalls) {
 // the pressure against the exact post-shock pressure between the moving wall and the shock (the
 // smeared shock itself excluded, so the boundary treatment shows), for first- and second-order
 // boundary treatment at three resolutions.
-double piston_error(int N, int order, double w, double t_end) {
-  const double th = 30 * std::numbers::pi / 180.0, nx = -std::sin(th), ny = std::cos(th);
+double piston_error(int N, int order, double w, double t_end, double deg = 30) {
+  const double th = deg * std::numbers::pi / 180.0, nx = -std::sin(th), ny = std::cos(th);
   char extra[256];
   std::snprintf(extra, sizeof(extra), "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n");
-  std::string scene = angled_wall_scene(30, N, "{rho: 1.0, velocity: [0.0, 0.0], p: 1.0}", t_end, extra);
+  std::string scene = angled_wall_scene(deg, N, "{rho: 1.0, velocity: [0.0, 0.0], p: 1.0}", t_end, extra);
   char vel[128];
   std::snprintf(vel, sizeof(vel), "]], velocity: [%.17g, %.17g]}", w * nx, w * ny);
   scene.replace(scene.find("]]}"), 3, vel);
@@ -160,17 +160,24 @@ double piston_error(int N, int order, double w, double t_end) {
   return err / n;
 }
 
-TEST(EmbeddedFlow, MovingPistonDiagonalSecondOrderBoundaryIsMoreAccurate) {
-  double e[2][3];
-  const int Ns[3] = {40, 80, 160};
-  for (int order = 1; order <= 2; ++order)
-    for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_error(Ns[r], order, 0.4, 0.15);
-  for (int order = 1; order <= 2; ++order)
-    std::printf("piston at 30 deg, boundary order %d: L1(p) %.3e %.3e %.3e, orders %.2f %.2f\n", order, e[order - 1][0],
-                e[order - 1][1], e[order - 1][2], observed_order(e[order - 1][0], e[order - 1][1]),
-                observed_order(e[order - 1][1], e[order - 1][2]));
-  for (int r = 0; r < 3; ++r) EXPECT_LT(e[1][r], e[0][r]) << Ns[r];
-  EXPECT_LT(e[1][2], 0.5 * e[1][0]);  // converging
+TEST(EmbeddedFlow, MovingPistonSecondOrderBoundaryIsMoreAccurate) {
+  for (double deg : {0.0, 30.0}) {  // along the grid (y) and diagonally
+    double e[2][3];
+    const int Ns[3] = {40, 80, 160};
+    for (int order = 1; order <= 2; ++order)
+      for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_error(Ns[r], order, 0.4, 0.15, deg);
+    for (int order = 1; order <= 2; ++order)
+      std::printf("piston at %2.0f deg, boundary order %d: L1(p) %.3e %.3e %.3e, orders %.2f %.2f\n", deg, order,
+                  e[order - 1][0], e[order - 1][1], e[order - 1][2], observed_order(e[order - 1][0], e[order - 1][1]),
+                  observed_order(e[order - 1][1], e[order - 1][2]));
+    // Both treatments converge. The d-weighted second-order face states beat the first-order
+    // ones on the diagonal wall; on a grid-aligned wall they do not yet (up to 27% worse at 40
+    // cells, equal at 160: an open item of issue 4).
+    EXPECT_LT(e[0][2], 0.5 * e[0][0]) << deg;
+    EXPECT_LT(e[1][2], 0.5 * e[1][0]) << deg;
+    if (deg > 0)
+      for (int r = 0; r < 3; ++r) EXPECT_LT(e[1][r], e[0][r]) << deg << " " << Ns[r];
+  }
 }
 
 }  // namespace
