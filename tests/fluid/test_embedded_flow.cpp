@@ -175,8 +175,9 @@ TEST(EmbeddedFlow, MovingPistonSecondOrderBoundaryIsMoreAccurate) {
     // cells, equal at 160: an open item of issue 4).
     EXPECT_LT(e[0][2], 0.5 * e[0][0]) << deg;
     EXPECT_LT(e[1][2], 0.5 * e[1][0]) << deg;
-    if (deg > 0)
+    if (deg > 0) {
       for (int r = 0; r < 3; ++r) EXPECT_LT(e[1][r], e[0][r]) << deg << " " << Ns[r];
+    }
   }
 }
 
