@@ -2,10 +2,14 @@
 //   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N]
 #pragma once
 
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "common/config/config.h"
 
 namespace cosim::app {
 
@@ -21,6 +25,20 @@ struct RunOptions {
 // code when the process should stop now (--help: 0, bad arguments: 2), nothing otherwise.
 std::optional<int> parse_command_line(int argc, char** argv, const std::string& name, const std::string& description,
                                       RunOptions& opt);
+
+// Loads the scene with `load(file, overrides)` and applies --threads; a configuration error is
+// logged ("file:line: key: expected ...") and gives nothing (the caller exits with code 2).
+template <class Scene, class Load>
+std::optional<Scene> load_scene(const RunOptions& opt, Load&& load) {
+  try {
+    Scene scene = load(opt.scene_file, opt.overrides);
+    if (opt.threads > 0) scene.threads = opt.threads;
+    return scene;
+  } catch (const config::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return std::nullopt;
+  }
+}
 
 // Creates the output directory; logs and returns false when that is impossible.
 bool make_output_directory(const std::filesystem::path& dir);

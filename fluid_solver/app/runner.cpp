@@ -65,14 +65,11 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 }  // namespace
 
 int run_fluid(const RunOptions& opt) {
-  FluidScene scene;
-  try {
-    scene = load_fluid_scene(opt.scene_file, opt.overrides);
-    if (opt.threads > 0) scene.threads = opt.threads;
-  } catch (const config::ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  }
+  auto loaded = app::load_scene<FluidScene>(opt, [](const std::string& f, const std::vector<std::string>& o) {
+    return load_fluid_scene(f, o);
+  });
+  if (!loaded) return 2;
+  FluidScene scene = std::move(*loaded);
   if (!app::make_output_directory(opt.out_dir)) return 4;
 
   std::unique_ptr<FluidSimulation> sim;

@@ -60,14 +60,11 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
 }  // namespace
 
 int run_solid(const RunOptions& opt) {
-  SolidScene scene;
-  try {
-    scene = load_solid_scene(opt.scene_file, opt.overrides);
-    if (opt.threads > 0) scene.threads = opt.threads;
-  } catch (const config::ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  }
+  auto loaded = app::load_scene<SolidScene>(opt, [](const std::string& f, const std::vector<std::string>& o) {
+    return load_solid_scene(f, o);
+  });
+  if (!loaded) return 2;
+  SolidScene scene = std::move(*loaded);
   if (scene.threads > 0) omp_set_num_threads(scene.threads);
   if (!app::make_output_directory(opt.out_dir)) return 4;
   std::unique_ptr<Simulation> sim;
