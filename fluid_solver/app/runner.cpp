@@ -65,9 +65,7 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 }  // namespace
 
 int run_fluid(const RunOptions& opt) {
-  auto loaded = app::load_scene<FluidScene>(opt, [](const std::string& f, const std::vector<std::string>& o) {
-    return load_fluid_scene(f, o);
-  });
+  auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
   if (!app::make_output_directory(opt.out_dir)) return 4;

@@ -17,23 +17,6 @@ double kinetic_per_mass(const CellState2& s, int k, int dim) {
 double temperature(const eos::StiffenedGas& e, double rho, double eint) { return (eint - e.q - e.pinf / rho) / e.cv; }
 }  // namespace
 
-void relax_velocity(CellState2& s, int dim) {
-  const double M = s.m[0] + s.m[1];
-  for (int d = 0; d < dim; ++d) {
-    const double ueq = (s.mom[0][d] + s.mom[1][d]) / M;
-    for (int k = 0; k < 2; ++k) {
-      const double uk = s.mom[k][d] / s.m[k];
-      s.E[k] += s.m[k] * ueq * (ueq - uk);
-      s.mom[k][d] = s.m[k] * ueq;
-    }
-  }
-}
-
-double relax_pressure(CellState2& s, const eos::StiffenedGas (&eos)[2], int dim) {
-  return relax_pressure_kernel(s.alpha0, s.m[0], s.m[1], kinetic_per_mass(s, 0, dim), kinetic_per_mass(s, 1, dim),
-                               s.E[0], s.E[1], eos[0], eos[1]);
-}
-
 void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {
   (void)eos;
   const double mg = s.m[0], mp = s.m[1], M = mg + mp;

@@ -19,18 +19,13 @@ struct CellState2 {
   double E[2];
 };
 
-// Instantaneous velocity relaxation to the mass-weighted mean velocity; the lost kinetic
-// energy of each phase becomes its internal energy (numerics.md 2.5(a)).
-void relax_velocity(CellState2& s, int dim);
-
-// Instantaneous pressure relaxation with implicit interface pressure p_I = p (numerics.md 2.5(b)):
+// Instantaneous pressure relaxation with implicit interface pressure p_I = p (numerics.md 2.5(b)) on
+// one cell, given phase masses m, kinetic energies per unit mass ke, total energies E and alpha0:
 // each phase follows e_k - e_k0 = -p (v_k - v_k0); for stiffened gases sum_k m_k v_k(p) = 1 is a
-// quadratic in p, solved in closed form and polished with one Newton step. Returns the pressure.
-double relax_pressure(CellState2& s, const eos::StiffenedGas (&eos)[2], int dim);
-
-// The same on one cell given phase masses m, kinetic energies per unit mass ke, total energies E
-// and alpha0; branch-free so that row loops over it vectorise. A state whose equilibrium pressure
-// is not admissible is left unchanged (the admissibility check then reports it).
+// quadratic in p, solved in closed form and polished with one Newton step. Branch-free so that the
+// solver's row loops over it vectorise (the instantaneous velocity relaxation, numerics.md 2.5(a),
+// lives in those loops too). A state whose equilibrium pressure is not admissible is left
+// unchanged (the admissibility check then reports it). Returns the pressure.
 [[gnu::always_inline]] inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1, const double ke0,
                                     const double ke1, double& E0, double& E1, const eos::StiffenedGas& e0,
                                     const eos::StiffenedGas& e1) {

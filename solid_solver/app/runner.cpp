@@ -60,9 +60,7 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
 }  // namespace
 
 int run_solid(const RunOptions& opt) {
-  auto loaded = app::load_scene<SolidScene>(opt, [](const std::string& f, const std::vector<std::string>& o) {
-    return load_solid_scene(f, o);
-  });
+  auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
   if (!loaded) return 2;
   SolidScene scene = std::move(*loaded);
   if (scene.threads > 0) omp_set_num_threads(scene.threads);
