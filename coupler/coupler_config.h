@@ -6,6 +6,7 @@
 //     timeout: 5.0               # [s] a peer silent for longer is declared dead
 //     heartbeat_interval: 0.5    # [s] (default: timeout / 10)
 //     connect_timeout: 30.0      # [s] to wait for both solvers' Hello
+//     predictor: linear          # linear | none: fluid pressures extrapolated to the solid's time (cycle.h)
 #pragma once
 
 #include <string>
@@ -24,6 +25,7 @@ struct CouplerConfig {
   double timeout = 5.0;
   double heartbeat_interval = 0.5;
   double connect_timeout = 30.0;
+  bool pressure_predictor = true;  // predictor: linear
 };
 
 // Throws config::ConfigError naming the file, line and key.

@@ -1,5 +1,5 @@
 // Command line of a standalone solver run and the steps every run starts with.
-//   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N]
+//   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N] [--coupler EP --token T]
 #pragma once
 
 #include <spdlog/spdlog.h>
@@ -19,6 +19,9 @@ struct RunOptions {
   std::vector<std::string> overrides;
   bool quiet = false;
   int threads = 0;  // 0: scene value / OpenMP default
+  std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
+  std::string token;    // per-run token of a coupled run
+  bool coupled() const { return !coupler.empty(); }
 };
 
 // Parses the command line and sets up logging on stderr as "[name] level: message". Returns an exit

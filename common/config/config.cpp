@@ -198,6 +198,20 @@ std::optional<Node> Node::optional_child(const std::string& key) {
   return child(key);
 }
 
+Node Node::child_or_empty(const std::string& key) {
+  if (!has(key)) {
+    used_.insert(key);
+    return Node(YAML::Node(YAML::NodeType::Map), key_path(key), ctx_);
+  }
+  return child(key);
+}
+
+double coupled_end_time(Node& root) {
+  if (!root.has("coupling")) return 0.0;
+  Node c = root.child("coupling");
+  return c.child("time").require<double>("end", positive());
+}
+
 std::vector<Node> Node::list(const std::string& key) {
   used_.insert(key);
   YAML::Node n = at(key);

@@ -69,6 +69,7 @@ class Node {
 
   Node child(const std::string& key);                 // required map
   std::optional<Node> optional_child(const std::string& key);
+  Node child_or_empty(const std::string& key);         // an empty map when missing
   std::vector<Node> list(const std::string& key);     // required sequence of entries
   std::vector<Node> elements() const;                 // this node as a sequence
 
@@ -98,6 +99,10 @@ class Node {
 Node load_file(const std::string& file, const std::vector<std::string>& overrides = {});
 Node load_string(const std::string& text, const std::string& name = "<string>",
                  const std::vector<std::string>& overrides = {});
+
+// A coupled scene (one with a coupling: section): its coupling.time.end [s], the end time the solvers'
+// own (then optional) time.end defaults to; 0 for a standalone scene.
+double coupled_end_time(Node& root);
 
 // Levenshtein distance, for "did you mean" suggestions.
 std::size_t edit_distance(const std::string& a, const std::string& b);

@@ -9,15 +9,9 @@
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
 #include "fluid_solver/io/fluid_output.h"
+#include "fluid_solver/app/run_summary.h"
 
 namespace cosim::fluid {
-
-namespace {
-struct RunRecord {
-  std::string status = "running", error;
-  double wall = 0;
-  nlohmann::json start_totals;
-};
 
 void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim, const RunRecord& rec) {
   const FluidScene& s = sim.scene();
@@ -60,11 +54,12 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
                      {"ghost_and_solid_cut_cells", sim.embedded().ghosts.size()},
                      {"flow_totals_change", change}};
   }
+  for (const auto& [k, v] : rec.extra.items()) j[k] = v;
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
-}  // namespace
 
 int run_fluid(const RunOptions& opt) {
+  if (opt.coupled()) return run_fluid_coupled(opt);
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);

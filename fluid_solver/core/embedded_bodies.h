@@ -19,9 +19,13 @@
 namespace cosim::fluid {
 
 // The solver's view of one cycle's geometry.
+// `wall_normal_speed` (coupled runs): per Surface face, the interface normal velocity u_I . n of the
+// coupler (paper eq. 22); it replaces the normal component of the surface velocity at the ghosts'
+// boundary intercepts. Null: the surface velocity as it is (prescribed motion).
 template <int DIM>
 EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
-                                const embedded::EmbeddedGeometry<DIM>& geo) {
+                                const embedded::EmbeddedGeometry<DIM>& geo,
+                                const std::vector<double>* wall_normal_speed = nullptr) {
   EmbeddedState e;
   e.active = true;
   e.kind = geo.category;
@@ -32,6 +36,12 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     for (int d = 0; d < 3; ++d) {
       r.normal[d] = ip.normal[d];
       r.wall_velocity[d] = ip.wall_velocity[d];
+    }
+    if (wall_normal_speed && ip.face >= 0) {
+      const double un = (*wall_normal_speed)[static_cast<std::size_t>(ip.face)];
+      double vn = 0;
+      for (int d = 0; d < 3; ++d) vn += r.wall_velocity[d] * r.normal[d];
+      for (int d = 0; d < 3; ++d) r.wall_velocity[d] += (un - vn) * r.normal[d];
     }
     r.distance = -ip.phi;
     r.image_distance = ip.image_distance;
@@ -47,6 +57,17 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     e.max_wall_speed = std::max(e.max_wall_speed, std::sqrt(q));
   }
   return e;
+}
+
+// The interface segments of one cycle as CSV (FluidSimulation::interface_segments_csv).
+template <int DIM>
+std::string segments_csv(const embedded::EmbeddedGeometry<DIM>& geo) {
+  std::string out = "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz\n";
+  for (const auto& sg : geo.segments)
+    out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", sg.ijk[0],
+                       sg.ijk[1], sg.ijk[2], sg.center[0], sg.center[1], sg.center[2], sg.normal[0], sg.normal[1],
+                       sg.normal[2], sg.area, sg.velocity[0], sg.velocity[1], sg.velocity[2]);
+  return out;
 }
 
 template <int DIM>
@@ -70,20 +91,16 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   }
   PhaseFields phase_fields(int k) const override { return inner_->phase_fields(k); }
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
+  void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
+    inner_->cell_states(cells, count, out);
+  }
   std::size_t interior_cells() const override { return inner_->interior_cells(); }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
   void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
   double geometry_seconds() const { return geometry_seconds_; }
-  std::string interface_segments_csv() const override {
-    std::string out = "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz\n";
-    for (const auto& sg : geo_.segments)
-      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", sg.ijk[0],
-                         sg.ijk[1], sg.ijk[2], sg.center[0], sg.center[1], sg.center[2], sg.normal[0], sg.normal[1],
-                         sg.normal[2], sg.area, sg.velocity[0], sg.velocity[1], sg.velocity[2]);
-    return out;
-  }
+  std::string interface_segments_csv() const override { return segments_csv(geo_); }
 
  private:
   // Geometry of the surface at the current time -> the solver (throws for thin bodies etc.).

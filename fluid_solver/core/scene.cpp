@@ -253,7 +253,7 @@ bool Region::contains(const std::array<double, 3>& x, int dim) const {
   return false;
 }
 
-FluidScene read_fluid_scene(Node& root) {
+FluidScene read_fluid_scene(Node& root, double coupled_end) {
   FluidScene s;
   Node f = root.child("fluid");
 
@@ -300,8 +300,10 @@ FluidScene read_fluid_scene(Node& root) {
   }
 
   // time
-  Node time = f.child("time");
-  s.t_end = time.require<double>("end", config::positive());
+  // In a coupled scene the coupler owns time (coupling.time); the fluid's time: then only sets cfl etc.
+  Node time = coupled_end > 0 ? f.child_or_empty("time") : f.child("time");
+  s.t_end = coupled_end > 0 ? time.get<double>("end", coupled_end, config::positive())
+                            : time.require<double>("end", config::positive());
   s.cfl = time.get<double>("cfl", 0.4, config::in_open_closed(0.0, 1.0));
   std::string integ = time.get<std::string>("integrator", "rk2", config::one_of({"rk2", "rk3"}));
   s.integrator = integ == "rk3" ? TimeIntegrator::RK3 : TimeIntegrator::RK2;
@@ -331,7 +333,9 @@ FluidScene read_fluid_scene(Node& root) {
     });
     s.embedded.second_order = order == 2;
     s.embedded.band = em->get<double>("band", 3.0, config::in_range(2.0, 50.0));
-    for (auto& bn : em->list("bodies")) s.embedded.bodies.push_back(read_body(bn, s.dim));
+    // Optional: in a coupled scene the solid's faces are the embedded boundary.
+    if (em->has("bodies") || coupled_end <= 0)
+      for (auto& bn : em->list("bodies")) s.embedded.bodies.push_back(read_body(bn, s.dim));
     em->finish();
   }
 
@@ -393,7 +397,7 @@ FluidScene read_document(Node root) {
   const std::string name = root.get<std::string>("name", "scene");
   root.get<std::string>("description", "");
   root.finish();
-  FluidScene s = read_fluid_scene(root);
+  FluidScene s = read_fluid_scene(root, config::coupled_end_time(root));
   s.name = name;
   return s;
 }

@@ -122,7 +122,8 @@ struct FluidScene {
 };
 
 // Read the `fluid:` section of a scene document. Throws config::ConfigError.
-FluidScene read_fluid_scene(config::Node& root);
+// coupled_end > 0 (a coupled scene): fluid.time is optional, its end defaults to coupled_end.
+FluidScene read_fluid_scene(config::Node& root, double coupled_end = 0.0);
 // Read the whole document (top-level `name`, `description` and `fluid`), rejecting unknown sections.
 FluidScene load_fluid_scene(const std::string& file, const std::vector<std::string>& overrides = {});
 FluidScene parse_fluid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides = {});

@@ -27,6 +27,12 @@ struct PhaseFields {
   std::vector<double> alpha, rho, velocity, p, T;
 };
 
+// Primitive state of one phase in one cell (for coupling samples).
+struct CellSample {
+  double alpha = 1, rho = 0, p = 0, c = 0;  // [-], [kg/m^3], [Pa], [m/s]
+  std::array<double, 3> velocity{0, 0, 0};  // [m/s]
+};
+
 struct PhaseTotals {
   double mass = 0;
   std::array<double, 3> momentum{0, 0, 0};
@@ -46,6 +52,8 @@ class FluidSimulation {
   virtual PhaseFields phase_fields(int phase) const = 0;
   // Mass, momentum and energy of each phase over the flow cells (fluid and fluid-cut).
   virtual std::vector<PhaseTotals> totals() const = 0;
+  // States of the given padded cells, phase-major per cell: out[n * phases + k] (phases = scene().num_phases()).
+  virtual void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state

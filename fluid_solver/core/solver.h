@@ -153,6 +153,29 @@ class Solver final : public FluidSimulation {
     return f;
   }
 
+  void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
+    for (std::size_t n = 0; n < count; ++n) {
+      const std::size_t c = cells[n];
+      for (int k = 0; k < NP; ++k) {
+        CellSample& o = out[n * NP + k];
+        double a = 1.0;
+        if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
+        const double m = U_.var(Lay::mass(k))[c];
+        double q = 0;
+        o.velocity = {0, 0, 0};
+        for (int d = 0; d < DIM; ++d) {
+          o.velocity[d] = U_.var(Lay::mom(k, d))[c] / m;
+          q += o.velocity[d] * o.velocity[d];
+        }
+        o.alpha = a;
+        o.rho = m / a;
+        const double rhoe = U_.var(Lay::energy(k))[c] / a - 0.5 * o.rho * q;
+        o.p = eos_[k].pressure(o.rho, rhoe / o.rho);
+        o.c = eos_[k].sound_speed(o.rho, o.p);
+      }
+    }
+  }
+
   std::vector<PhaseTotals> totals() const override {
     std::vector<PhaseTotals> out(NP);
     const double vol = g_.cell_volume();

@@ -7,6 +7,10 @@
 namespace cosim::fluid {
 
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
+  write_snapshot(series, sim, sim.interface_segments_csv());
+}
+
+void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments) {
   const FluidScene& s = sim.scene();
   const int np = s.num_phases();
   std::vector<PhaseFields> ph;
@@ -48,7 +52,6 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
   const std::size_t index = series.count();
   const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, views);
-  const std::string segments = sim.interface_segments_csv();
   if (!segments.empty())  // the embedded interface of this snapshot (ParaView: CSV reader + Table To Points)
     io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index), segments);
 }

@@ -11,7 +11,9 @@ namespace cosim::fluid {
 
 // Writes per phase: <phase>_alpha (two phases only), _density, _velocity, _pressure, _temperature;
 // for two phases also mixture_density, mixture_velocity (mass-averaged), mixture_pressure (sum alpha p).
+// The interface segments (CSV) go next to the snapshot: `segments`, or sim.interface_segments_csv().
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim);
+void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments);
 
 nlohmann::json totals_json(const FluidScene& scene, const std::vector<PhaseTotals>& totals);
 

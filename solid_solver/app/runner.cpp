@@ -12,16 +12,10 @@
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
+#include "solid_solver/app/run_summary.h"
 #include "solid_solver/io/solid_output.h"
 
 namespace cosim::solid {
-
-namespace {
-struct RunRecord {
-  std::string status = "running", error;
-  double wall = 0;
-  EnergyBudget start;
-};
 
 void write_summary(const std::filesystem::path& dir, const Simulation& sim, const RunRecord& rec) {
   const SolidScene& s = sim.scene();
@@ -55,11 +49,12 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
                                  {"centre_of_mass", std::vector<double>(rb.X, rb.X + D)},
                                  {"velocity", std::vector<double>(rb.V, rb.V + D)}});
   }
+  for (const auto& [k, v] : rec.extra.items()) j[k] = v;
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
-}  // namespace
 
 int run_solid(const RunOptions& opt) {
+  if (opt.coupled()) return run_solid_coupled(opt);
   auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
   if (!loaded) return 2;
   SolidScene scene = std::move(*loaded);

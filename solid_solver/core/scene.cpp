@@ -315,9 +315,12 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     num->finish();
   }
 
-  Node time = sn.child("time");
+  // In a coupled scene the coupler owns time (coupling.time); the solid's time: is then optional.
+  const double coupled_end = config::coupled_end_time(root);
+  Node time = coupled_end > 0 ? sn.child_or_empty("time") : sn.child("time");
   known_keys(time, {"end", "max_steps"});
-  s.t_end = time.require<double>("end", config::positive());
+  s.t_end = coupled_end > 0 ? time.get<double>("end", coupled_end, config::positive())
+                            : time.require<double>("end", config::positive());
   s.max_steps = time.get<long>("max_steps", s.max_steps,
                                [](const long& v) { return v >= 1 ? std::string() : std::string("an integer >= 1"); });
   time.finish();

@@ -1,0 +1,82 @@
+// The loop every solver runs in a coupled run: the coupler owns time, so the solver only obeys its
+// directives (docs/protocol.md, "Writing a solver client"). The solver supplies the cycle (its part of
+// paper section 8 for one DtDecision) and the snapshot writer; this maps every failure to an exit code
+// and tells the coupler why when the fault is ours:
+//   0 completed (the coupler's Stop), 3 numerical failure of this solver, 4 I/O or other failure,
+//   5 coupling failure (peer lost, refused, protocol error, malformed data), 130 interrupted.
+#pragma once
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "common/app/run_driver.h"
+#include "common/coupling/client.h"
+
+namespace cosim::coupling {
+
+struct SolverLoopResult {
+  std::string status = "completed";  // completed | failed | interrupted
+  std::string error;
+  int code = 0;
+  double wall = 0;   // [s]
+  long cycles = 0;   // DtDecisions obeyed
+  int snapshots = 0;
+};
+
+// cycle(const Directive&) runs one coupled cycle (Advance); output(const Directive&) writes snapshot
+// d.output_index. Solver time and the coupler's t^n are compared at every cycle.
+template <class Solver, class Cycle, class Output>
+SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycle, Output&& output) {
+  SolverLoopResult r;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto fail = [&](int code, const std::string& status, const std::string& msg, bool tell) {
+    r.code = code;
+    r.status = status;
+    r.error = msg;
+    if (tell) client.report_error(msg);
+    spdlog::error("{}", msg);
+  };
+  try {
+    for (;;) {
+      if (app::interrupted()) throw std::runtime_error("interrupted");
+      const Directive d = client.next();
+      if (d.kind == Directive::Kind::Stop) {
+        spdlog::info("coupler: {}", d.reason);
+        break;
+      }
+      if (d.kind == Directive::Kind::Output) {
+        output(d);
+        ++r.snapshots;
+        continue;
+      }
+      const double scale = std::max({std::abs(d.time), std::abs(sim.time()), d.dt, 1e-300});
+      if (std::abs(sim.time() - d.time) > 1e-9 * scale)
+        throw ProtocolError(fmt::format("DtDecision of cycle {} starts at t = {:.12g} s but this solver is at t = "
+                                        "{:.12g} s",
+                                        d.cycle, d.time, sim.time()));
+      cycle(d);
+      ++r.cycles;
+    }
+  } catch (const CouplingError& e) {
+    fail(app::interrupted() ? 130 : 5, app::interrupted() ? "interrupted" : "failed", e.what(), false);
+  } catch (const std::invalid_argument& e) {  // malformed data from the coupler
+    fail(5, "failed", e.what(), true);
+  } catch (const app::NumericalError& e) {
+    fail(3, "failed", e.what(), true);
+  } catch (const std::exception& e) {
+    if (app::interrupted()) {
+      fail(130, "interrupted", "interrupted", true);
+    } else {
+      fail(4, "failed", e.what(), true);
+    }
+  }
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  client.close();
+  return r;
+}
+
+}  // namespace cosim::coupling

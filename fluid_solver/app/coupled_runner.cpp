@@ -1,0 +1,100 @@
+// The fluid's coupled run (paper section 8; docs/protocol.md): the coupler decides every step and every
+// snapshot; each cycle the solid's faces become this cycle's embedded boundary, the fluid is sampled next
+// to them, and the interface states of the coupler set the wall velocity of the step.
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include "common/coupling/client.h"
+#include "common/coupling/scene_hash.h"
+#include "common/coupling/solver_loop.h"
+#include "fluid_solver/app/run_summary.h"
+#include "fluid_solver/app/runner.h"
+#include "fluid_solver/coupled/coupled_boundary.h"
+#include "fluid_solver/io/fluid_output.h"
+
+namespace cosim::fluid {
+
+int run_fluid_coupled(const RunOptions& opt) {
+  auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
+  if (!loaded) return 2;
+  FluidScene scene = std::move(*loaded);
+  if (!scene.embedded.bodies.empty()) {
+    spdlog::error("{}: fluid.embedded.bodies: a coupled run takes its embedded boundary from the solid; remove the "
+                  "bodies or run the fluid alone",
+                  opt.scene_file);
+    return 2;
+  }
+  if (!app::make_output_directory(opt.out_dir)) return 4;
+  std::unique_ptr<FluidSimulation> sim;
+  std::unique_ptr<coupled::CoupledBoundary> boundary;
+  try {
+    sim = make_simulation(scene);
+    boundary = coupled::make_coupled_boundary(*sim);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
+    return 2;
+  }
+  app::install_interrupt_handlers();
+
+  coupling::ClientOptions co;
+  co.endpoint = opt.coupler;
+  co.token = opt.token;
+  co.role = coupling::Role::Fluid;
+  co.program = "fluid_solver";
+  for (const auto& ph : scene.phases) co.phase_names.push_back(ph.name);
+  std::unique_ptr<coupling::Client> client;
+  try {
+    co.scene_hash = coupling::scene_hash(opt.scene_file, opt.overrides);
+    client = std::make_unique<coupling::Client>(co);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 5;
+  }
+  spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,
+               sim->interior_cells(), scene.num_phases(), opt.coupler, coupling::mode_name(client->mode()));
+
+  io::SnapshotSeries series(opt.out_dir, "fluid");
+  RunRecord rec;
+  double solver_seconds = 0;
+  bool first = true;
+  const auto cycle = [&](const coupling::Directive& d) {
+    const coupling::Faces faces = client->receive_faces();
+    client->send_samples(boundary->receive_faces(faces, d.dt));
+    boundary->apply_states(client->receive_states());
+    if (first) {  // the flow domain is known from the first geometry on
+      rec.start_totals = totals_json(scene, sim->totals());
+      first = false;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    if (d.dt > 0) sim->advance(d.dt);
+    const double dt = sim->stable_dt();
+    solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    client->propose_dt(dt);
+  };
+  const auto output = [&](const coupling::Directive&) { write_snapshot(series, *sim, boundary->segments_csv()); };
+  const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output);
+  rec.status = res.status;
+  rec.error = res.error;
+  rec.wall = res.wall;
+  rec.extra["coupling"] = {{"endpoint", opt.coupler},
+                           {"cycles", res.cycles},
+                           {"snapshots", res.snapshots},
+                           {"flow_solver_seconds", solver_seconds},
+                           {"geometry_seconds", boundary->geometry_seconds()}};
+  if (first) rec.start_totals = totals_json(scene, sim->totals());
+  try {
+    write_summary(opt.out_dir, *sim, rec);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot write summary.json: {}", e.what());
+    return res.code ? res.code : 4;
+  }
+  if (res.code == 0)
+    spdlog::info("done: t = {:.6g} in {} cycles, {:.2f} s wall ({:.2f} s flow solver, {:.2f} s geometry), {} "
+                 "snapshot(s) in {}",
+                 sim->time(), res.cycles, res.wall, solver_seconds, boundary->geometry_seconds(), series.count(),
+                 opt.out_dir.string());
+  return res.code;
+}
+
+}  // namespace cosim::fluid

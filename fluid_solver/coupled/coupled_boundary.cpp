@@ -1,0 +1,92 @@
+#include "fluid_solver/coupled/coupled_boundary.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "fluid_solver/core/embedded_bodies.h"
+#include "fluid_solver/coupled/interface_samples.h"
+#include "fluid_solver/coupled/interface_surface.h"
+#include "fluid_solver/embedded/geometry.h"
+
+namespace cosim::fluid::coupled {
+
+namespace {
+
+template <int DIM>
+class CoupledBoundaryImpl final : public CoupledBoundary {
+ public:
+  explicit CoupledBoundaryImpl(FluidSimulation& sim)
+      : sim_(sim),
+        g_(sim.scene().cells, sim.scene().lower, sim.scene().upper),
+        second_order_(sim.scene().embedded.second_order) {
+    opt_.band_cells = sim.scene().embedded.band;
+  }
+
+  coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    surface_ = surface_from_faces(faces, DIM, dt);
+    embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
+    geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces);
+    return samples_;
+  }
+
+  void apply_states(const coupling::InterfaceStates& st) override {
+    const int np = samples_.phases;
+    if (st.count != samples_.count)
+      throw std::invalid_argument(
+          fmt::format("InterfaceStates.count = {} but this cycle has {} faces", st.count, samples_.count));
+    if (st.phases != np)
+      throw std::invalid_argument(fmt::format("InterfaceStates.phases = {} but the fluid has {}", st.phases, np));
+    const std::size_t m = static_cast<std::size_t>(st.count) * np;
+    if (st.normal_velocity.size() != m || st.pressure.size() != m)
+      throw std::invalid_argument(fmt::format("InterfaceStates: {} pressures and {} normal velocities, expected {}",
+                                              st.pressure.size(), st.normal_velocity.size(), m));
+    // One wall velocity per face: the phases' interface velocities weighted by their volume fractions.
+    face_speed_.assign(static_cast<std::size_t>(st.count), 0.0);
+    for (int f = 0; f < st.count; ++f) {
+      double a = 0, u = 0;
+      for (int k = 0; k < np; ++k) {
+        const std::size_t i = static_cast<std::size_t>(f) * np + k;
+        const double ak = samples_.wetted[f] ? samples_.alpha[i] : 1.0;
+        a += ak;
+        u += ak * st.normal_velocity[i];
+      }
+      face_speed_[f] = a > 0 ? u / a : 0.0;
+    }
+    surface_speed_.resize(surface_.source_face.size());
+    for (std::size_t sf = 0; sf < surface_.source_face.size(); ++sf)
+      surface_speed_[sf] = face_speed_[static_cast<std::size_t>(surface_.source_face[sf])];
+    sim_.set_embedded(to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_), second_order_);
+  }
+
+  std::string segments_csv() const override { return fluid::segments_csv<DIM>(geo_); }
+  double geometry_seconds() const override { return geometry_seconds_; }
+
+ private:
+  FluidSimulation& sim_;
+  Grid<DIM> g_;
+  bool second_order_;
+  embedded::GeometryOptions opt_;
+  embedded::EmbeddedGeometry<DIM> geo_;
+  InterfaceSurface surface_;
+  coupling::FluidSamples samples_;
+  std::vector<double> face_speed_, surface_speed_;
+  double geometry_seconds_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim) {
+  switch (sim.scene().dim) {
+    case 2: return std::make_unique<CoupledBoundaryImpl<2>>(sim);
+    case 3: return std::make_unique<CoupledBoundaryImpl<3>>(sim);
+    default:
+      throw std::invalid_argument(
+          fmt::format("coupled runs need a 2D or 3D fluid grid (this scene is {}D)", sim.scene().dim));
+  }
+}
+
+}  // namespace cosim::fluid::coupled

@@ -1,0 +1,32 @@
+// The fluid side of one coupled cycle (paper section 8; docs/protocol.md): the solid's faces from the
+// coupler become the embedded boundary of this cycle, the fluid is sampled next to each face, and the
+// coupler's interface states set the wall velocity the ghost cells and the face states use.
+// One runtime seam (the grid dimension); the work itself is compiled per dimension.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "common/coupling/types.h"
+#include "fluid_solver/core/simulation.h"
+
+namespace cosim::fluid::coupled {
+
+class CoupledBoundary {
+ public:
+  virtual ~CoupledBoundary() = default;
+  // Step 2: faces at t^{n+1} (placed back at t^n by `dt` times their velocity) -> clipping, signed
+  // distance, categories, image points; returns the fluid samples per face and phase.
+  // Throws std::invalid_argument for malformed faces and std::runtime_error for unusable geometry.
+  virtual coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) = 0;
+  // Steps 3-6: interface normal velocity per face (eq. 22; the alpha-weighted mean over phases where
+  // the fluid has two) -> the solver's embedded state for the coming step.
+  virtual void apply_states(const coupling::InterfaceStates& states) = 0;
+  virtual std::string segments_csv() const = 0;
+  virtual double geometry_seconds() const = 0;  // total spent in the geometry [s]
+};
+
+// For a 2D or 3D simulation (throws std::invalid_argument for 1D).
+std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim);
+
+}  // namespace cosim::fluid::coupled

@@ -1,0 +1,114 @@
+// The fluid state next to each interface face, per phase (paper section 8, step 2, fluid half; the
+// input of the coupler's interface conditions, eqs. 21-22): alpha, rho, u . n, p and z = rho c.
+//
+// Sample point: the face centre moved out along the face normal by one cell (h = sum_d |n_d| dx_d),
+// where the (bi/tri)linear stencil of the cell centres around it is evaluated over the flow cells
+// (fluid / fluid-cut) only, their weights renormalised. A point whose flow cells carry less than half
+// the weight is pushed out by another h (at most twice). A face is not wetted (no load, no state) when
+// its sample point leaves the fluid domain or finds no flow cells: e.g. the parts of a solid that
+// reach outside the background mesh.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "common/coupling/types.h"
+#include "fluid_solver/core/embedded_state.h"
+#include "fluid_solver/core/grid.h"
+#include "fluid_solver/core/simulation.h"
+
+namespace cosim::fluid::coupled {
+
+struct SampleOptions {
+  double min_flow_weight = 0.5;
+  int max_pushes = 2;
+};
+
+template <int DIM>
+coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<std::uint8_t>& kind,
+                                        const FluidSimulation& sim, const coupling::Faces& faces,
+                                        const SampleOptions& opt = {}) {
+  constexpr int NS = 1 << DIM;
+  const int np = sim.scene().num_phases();
+  coupling::FluidSamples out;
+  out.count = faces.count;
+  out.phases = np;
+  const std::size_t m = static_cast<std::size_t>(faces.count) * np;
+  out.alpha.assign(m, 0.0);
+  out.rho.assign(m, 0.0);
+  out.normal_velocity.assign(m, 0.0);
+  out.pressure.assign(m, 0.0);
+  out.impedance.assign(m, 0.0);
+  out.wetted.assign(faces.count, 0);
+  std::array<std::size_t, NS> cells{};
+  std::array<double, NS> w{};
+  std::vector<CellSample> states(static_cast<std::size_t>(NS) * np);
+  for (int f = 0; f < faces.count; ++f) {
+    std::array<double, 3> c{0, 0, 0}, n{0, 0, 0};
+    double h = 0;
+    for (int d = 0; d < DIM; ++d) {
+      c[d] = faces.centre[static_cast<std::size_t>(f) * DIM + d];
+      n[d] = faces.normal[static_cast<std::size_t>(f) * DIM + d];
+      h += std::abs(n[d]) * g.dx[d];
+    }
+    bool found = false;
+    for (int push = 0; push <= opt.max_pushes && !found; ++push) {
+      std::array<double, 3> x{0, 0, 0};
+      bool inside = true;
+      for (int d = 0; d < DIM; ++d) {
+        x[d] = c[d] + (1.0 + push) * h * n[d];
+        const double hi = g.lower[d] + g.n[d] * g.dx[d];
+        if (x[d] < g.lower[d] || x[d] > hi) inside = false;
+      }
+      if (!inside) break;  // left the fluid domain: not wetted
+      std::array<int, 3> base{0, 0, 0};
+      std::array<double, 3> t{0, 0, 0};
+      for (int d = 0; d < DIM; ++d) {  // cell-centre lattice, clamped to the interior cells
+        const double u = std::clamp((x[d] - g.lower[d]) / g.dx[d] - 0.5, 0.0, g.n[d] - 1.0);
+        base[d] = std::min(static_cast<int>(u), std::max(g.n[d] - 2, 0));
+        t[d] = g.n[d] > 1 ? u - base[d] : 0.0;
+      }
+      double flow = 0;
+      for (int k = 0; k < NS; ++k) {
+        std::array<int, 3> ijk{0, 0, 0};
+        double wk = 1;
+        for (int d = 0; d < DIM; ++d) {
+          const int bit = (k >> d) & 1;
+          ijk[d] = std::min(base[d] + bit, g.n[d] - 1);
+          wk *= bit ? t[d] : 1.0 - t[d];
+        }
+        cells[k] = g.index(ijk[0], ijk[1], ijk[2]);
+        w[k] = kind.empty() || is_flow_cell(kind[cells[k]]) ? wk : 0.0;
+        flow += w[k];
+      }
+      if (flow < opt.min_flow_weight) continue;
+      found = true;
+      sim.cell_states(cells.data(), NS, states.data());
+      for (int k = 0; k < np; ++k) {
+        double a = 0, rho = 0, un = 0, p = 0, cs = 0;
+        for (int q = 0; q < NS; ++q) {
+          if (w[q] == 0) continue;
+          const CellSample& s = states[static_cast<std::size_t>(q) * np + k];
+          const double wq = w[q] / flow;
+          a += wq * s.alpha;
+          rho += wq * s.rho;
+          p += wq * s.p;
+          cs += wq * s.c;
+          for (int d = 0; d < DIM; ++d) un += wq * s.velocity[d] * n[d];
+        }
+        const std::size_t i = static_cast<std::size_t>(f) * np + k;
+        out.alpha[i] = a;
+        out.rho[i] = rho;
+        out.normal_velocity[i] = un;
+        out.pressure[i] = p;
+        out.impedance[i] = rho * cs;
+      }
+      out.wetted[f] = 1;
+    }
+  }
+  return out;
+}
+
+}  // namespace cosim::fluid::coupled

@@ -1,0 +1,97 @@
+// The solid's coupled run (paper section 8, step 1; docs/protocol.md): each cycle the solid advances by the
+// coupler's step under the interface pressures of the previous cycle, reports its exterior faces, takes
+// the new face pressures and proposes its stable step. Snapshots when the coupler asks.
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "common/coupling/client.h"
+#include "common/coupling/scene_hash.h"
+#include "common/coupling/solver_loop.h"
+#include "solid_solver/app/run_summary.h"
+#include "solid_solver/app/runner.h"
+#include "solid_solver/coupled/interface_faces.h"
+#include "solid_solver/io/solid_output.h"
+
+namespace cosim::solid {
+
+int run_solid_coupled(const RunOptions& opt) {
+  auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
+  if (!loaded) return 2;
+  SolidScene scene = std::move(*loaded);
+  if (scene.threads > 0) omp_set_num_threads(scene.threads);
+  if (!app::make_output_directory(opt.out_dir)) return 4;
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = std::make_unique<Simulation>(scene);
+  } catch (const StateError& e) {
+    spdlog::error("{}: {}", opt.scene_file, e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
+    return 2;
+  }
+  app::install_interrupt_handlers();
+  coupling::ClientOptions co;
+  co.endpoint = opt.coupler;
+  co.token = opt.token;
+  co.role = coupling::Role::Solid;
+  co.program = "solid_solver";
+  std::unique_ptr<coupling::Client> client;
+  try {
+    co.scene_hash = coupling::scene_hash(opt.scene_file, opt.overrides);
+    client = std::make_unique<coupling::Client>(co);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 5;
+  }
+  const InterfaceFaceMap map = make_interface_face_map(sim->boundary_faces());
+  spdlog::info("{}: {}D, {} elements, {} interface faces, coupled through {}", scene.name, scene.dim,
+               sim->mesh().num_elements, sim->boundary_faces().count, opt.coupler);
+
+  io::SnapshotSeries series(opt.out_dir, "solid");
+  RunRecord rec;
+  rec.start = sim->energy();
+  double solver_seconds = 0;
+  const auto cycle = [&](const coupling::Directive& d) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (d.dt > 0) sim->advance(d.dt);  // with the face pressures of the previous cycle
+    const coupling::Faces faces = interface_faces(sim->boundary_faces(), map, sim->state());
+    solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    client->send_faces(faces);
+    const coupling::InterfaceStates st = client->receive_states();
+    if (st.count != faces.count)
+      throw std::invalid_argument(
+          fmt::format("InterfaceStates.count = {} but the solid has {} interface faces", st.count, faces.count));
+    if (static_cast<int>(st.face_pressure.size()) != st.count)
+      throw std::invalid_argument(fmt::format("InterfaceStates.face_pressure: {} values for {} faces",
+                                              st.face_pressure.size(), st.count));
+    sim->set_face_pressures(st.face_pressure);
+    client->propose_dt(sim->stable_dt());
+  };
+  const auto output = [&](const coupling::Directive&) {
+    if (scene.write_snapshots) write_snapshot(series, *sim);
+  };
+  const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output);
+  rec.status = res.status;
+  rec.error = res.error;
+  rec.wall = res.wall;
+  rec.extra["coupling"] = {{"endpoint", opt.coupler},
+                           {"cycles", res.cycles},
+                           {"snapshots", res.snapshots},
+                           {"solver_seconds", solver_seconds}};
+  try {
+    write_summary(opt.out_dir, *sim, rec);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot write summary.json: {}", e.what());
+    return res.code ? res.code : 4;
+  }
+  if (res.code == 0)
+    spdlog::info("done: t = {:.6g} in {} cycles, {:.2f} s wall ({:.2f} s solid solver), {} snapshot(s) in {}",
+                 sim->time(), res.cycles, res.wall, solver_seconds, series.count(), opt.out_dir.string());
+  return res.code;
+}
+
+}  // namespace cosim::solid
