@@ -109,6 +109,7 @@ struct Loop {
     coupling::to_pb(st, *to_fluid.mutable_states());
     to_fluid.mutable_states()->clear_face_pressure();
     to_fluid.mutable_states()->clear_face_normal_velocity();
+    to_fluid.mutable_states()->clear_face_wetted();
     pb::Envelope to_solid = envelope(hub, n, t + dt);
     coupling::to_pb(st, *to_solid.mutable_states());
     to_solid.mutable_states()->set_phases(0);

@@ -39,6 +39,7 @@ coupling::InterfaceStates interface_conditions(const coupling::Faces& faces, con
   out.normal_velocity.resize(out.pressure.size());
   out.face_pressure.assign(n, 0.0);
   out.face_normal_velocity.assign(n, 0.0);
+  out.face_wetted.assign(n, 0);
   for (int f = 0; f < n; ++f) {
     double v_s = 0.0;
     for (int c = 0; c < d; ++c) v_s += faces.velocity[f * d + c] * faces.normal[f * d + c];
@@ -57,6 +58,7 @@ coupling::InterfaceStates interface_conditions(const coupling::Faces& faces, con
       sum_v += s.alpha[i] * st.velocity;
     }
     if (wet && sum_a > 0.0) {
+      out.face_wetted[f] = 1;
       out.face_pressure[f] = sum_p / sum_a;
       out.face_normal_velocity[f] = sum_v / sum_a;
     } else {

@@ -44,6 +44,7 @@ struct InterfaceStates {
   int phases = 0;
   std::vector<double> pressure, normal_velocity;            // count * phases [Pa], [m/s]
   std::vector<double> face_pressure, face_normal_velocity;  // count [Pa], [m/s]
+  std::vector<char> face_wetted;                            // count (with face_pressure)
   Mode mode = Mode::Impedance;
 };
 

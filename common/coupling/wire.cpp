@@ -191,6 +191,7 @@ std::string validate_states(const pb::InterfaceStates& m) {
                 size_check("InterfaceStates", "normal_velocity", m.normal_velocity_size(), np, "count * phases"),
                 size_check("InterfaceStates", "face_pressure", m.face_pressure_size(), nf, "count"),
                 size_check("InterfaceStates", "face_normal_velocity", m.face_normal_velocity_size(), nf, "count"),
+                size_check("InterfaceStates", "face_wetted", m.face_wetted_size(), nf, "count"),
                 finite_check("InterfaceStates", "pressure", m.pressure()),
                 finite_check("InterfaceStates", "normal_velocity", m.normal_velocity()),
                 finite_check("InterfaceStates", "face_pressure", m.face_pressure()),
@@ -289,6 +290,8 @@ void to_pb(const InterfaceStates& s, pb::InterfaceStates& m) {
   put(s.normal_velocity, m.mutable_normal_velocity());
   put(s.face_pressure, m.mutable_face_pressure());
   put(s.face_normal_velocity, m.mutable_face_normal_velocity());
+  m.mutable_face_wetted()->Clear();
+  for (char w : s.face_wetted) m.add_face_wetted(w != 0);
   m.set_mode(to_pb(s.mode));
 }
 
@@ -300,6 +303,7 @@ InterfaceStates from_pb(const pb::InterfaceStates& m) {
   s.normal_velocity = vec<double>(m.normal_velocity());
   s.face_pressure = vec<double>(m.face_pressure());
   s.face_normal_velocity = vec<double>(m.face_normal_velocity());
+  s.face_wetted = vec<char>(m.face_wetted());
   s.mode = from_pb(m.mode());
   return s;
 }

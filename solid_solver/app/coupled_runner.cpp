@@ -69,6 +69,8 @@ int run_solid_coupled(const RunOptions& opt) {
       throw std::invalid_argument(fmt::format("InterfaceStates.face_pressure: {} values for {} faces",
                                               st.face_pressure.size(), st.count));
     sim->set_face_pressures(st.face_pressure);
+    if (client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size())
+      sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
     client->propose_dt(sim->stable_dt());
   };
   const auto output = [&](const coupling::Directive&) {

@@ -272,7 +272,62 @@ void Simulation::set_face_pressures(const std::vector<double>& p) {
     if (st_.bc_mask[n] & kBcLoaded) loaded_nodes_.push_back(n);
 }
 
+void Simulation::set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted) {
+  if (!faces_built_) boundary_faces();
+  if (u.size() != static_cast<std::size_t>(faces_.count) || wetted.size() != u.size())
+    throw std::invalid_argument(fmt::format("set_face_normal_velocities: {} velocities and {} flags for {} exterior "
+                                            "faces",
+                                            u.size(), wetted.size(), faces_.count));
+  const int D = mesh_.dim, k = faces_.nodes_per_face;
+  std::vector<double> a(mesh_.num_nodes, 0.0), au(mesh_.num_nodes, 0.0), an(static_cast<std::size_t>(mesh_.num_nodes) * D, 0.0);
+  for (int f = 0; f < faces_.count; ++f) {
+    if (!wetted[f]) continue;
+    const double A = faces_.area[f];
+    for (int q = 0; q < k; ++q) {
+      const int n = faces_.nodes[static_cast<std::size_t>(f) * k + q];
+      a[n] += A;
+      au[n] += A * u[f];
+      for (int d = 0; d < D; ++d) an[static_cast<std::size_t>(n) * D + d] += A * faces_.normal[static_cast<std::size_t>(f) * D + d];
+    }
+  }
+  iface_nodes_.clear();
+  iface_u_.clear();
+  iface_n_.clear();
+  for (int n = 0; n < mesh_.num_nodes; ++n) {
+    if (a[n] <= 0 || (st_.bc_mask[n] & kBcRigid)) continue;
+    double l = 0;
+    for (int d = 0; d < D; ++d) l += an[static_cast<std::size_t>(n) * D + d] * an[static_cast<std::size_t>(n) * D + d];
+    l = std::sqrt(l);
+    if (!(l > 0)) continue;
+    iface_nodes_.push_back(n);
+    iface_u_.push_back(au[n] / a[n]);
+    for (int d = 0; d < D; ++d) iface_n_.push_back(an[static_cast<std::size_t>(n) * D + d] / l);
+  }
+}
+
+void Simulation::apply_interface_velocities() {
+  const int D = mesh_.dim;
+  double wb = 0;
+  for (std::size_t i = 0; i < iface_nodes_.size(); ++i) {
+    const int n = iface_nodes_[i];
+    double* v = &st_.v[static_cast<std::size_t>(n) * D];
+    const double* nn = &iface_n_[i * D];
+    double vn = 0, e_old = 0, e_new = 0;
+    for (int d = 0; d < D; ++d) vn += v[d] * nn[d];
+    for (int d = 0; d < D; ++d) {
+      e_old += v[d] * v[d];
+      if (!(st_.bc_mask[n] & (1u << d))) v[d] += (iface_u_[i] - vn) * nn[d];
+      e_new += v[d] * v[d];
+    }
+    wb += 0.5 * st_.mass[n] * (e_new - e_old);
+  }
+  wb_ += wb;
+  ke_ += wb;
+  iface_nodes_.clear();
+}
+
 void Simulation::nodal_update(double dt) {
+  if (!iface_nodes_.empty()) apply_interface_velocities();
   if (!loads_.empty() || !face_p_.empty()) apply_pressure_loads();
   const int D = mesh_.dim;
   const int nn = mesh_.num_nodes;

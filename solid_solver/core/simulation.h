@@ -52,6 +52,12 @@ class Simulation {
   // -p A n on the current face geometry, split equally between the face's nodes, in addition to the scene's
   // pressure boundaries; its work enters the boundary work. An empty vector removes it.
   void set_face_pressures(const std::vector<double>& p);
+  // Interface normal velocity per exterior face (the coupler's u_I, paper eq. 22, applied with the pressure
+  // as the interface condition of paper section 8, step 1) for the faces marked in `wetted`: at the start
+  // of the next cycle each deformable node of a wetted face gets the area-weighted mean u_I of its wetted
+  // faces as its velocity along their mean normal (rigid-block and fixed components are left alone). The
+  // kinetic-energy change is counted as boundary work. Used once, then cleared.
+  void set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted);
   // Rigid blocks (blocks[].rigid), in block order.
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_; }
   // Bytes of state per element (nodal arrays apportioned), for the benchmark report.
@@ -76,6 +82,9 @@ class Simulation {
   std::vector<RigidBody> rigid_;
   BoundaryFaces faces_;
   bool faces_built_ = false;
+  void apply_interface_velocities();
+  std::vector<int> iface_nodes_;          // nodes with an interface velocity for the next cycle
+  std::vector<double> iface_u_, iface_n_;  // their u_I [m/s] and unit normal (dim per node)
   std::vector<double> face_p_;  // coupler pressures per exterior face [Pa] (empty: none)
   double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
