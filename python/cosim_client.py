@@ -155,12 +155,17 @@ class Client:
         self._fail("expected DtDecision, OutputRequest or Stop, got %s" % kind)
 
     def send_faces(self, faces):
-        """faces: dict with dim, centre, normal, area, velocity, normal_stress, impedance (flat lists)."""
+        """faces: dict with dim, centre, normal, area, velocity, normal_stress, impedance (flat lists), and
+        optionally nodes_per_face, vertex_position, face_vertex."""
         e = self._envelope()
         f = e.faces
         f.dim, f.count = faces["dim"], len(faces["area"])
         for k in ("centre", "normal", "area", "velocity", "normal_stress", "impedance"):
             getattr(f, k).extend(faces[k])
+        if faces.get("nodes_per_face"):  # vertex data: needed by a fluid that embeds the faces
+            f.nodes_per_face = faces["nodes_per_face"]
+            f.vertex_position.extend(faces["vertex_position"])
+            f.face_vertex.extend(faces["face_vertex"])
         self._send(e)
 
     def receive_faces(self):

@@ -4,10 +4,11 @@
     rigid_piston.py SCENE --out DIR --coupler ENDPOINT --token T [--set k=v ...]
                     [--mass KG] [--area M2] [--left X] [--right X] [--v0 M/S] [--dim 2|3]
 
-One face pair: the left face (normal -x) and the right face (normal +x) of a rigid slab [left, right] with
-cross-section `area`. Newton's law under the interface pressures of the previous cycle (paper section 8, step 1):
-F = (p_left - p_right) * area, v += dt F / m, x += dt v (symplectic Euler). Defaults come from the scene's solid:
-section when it describes a box mesh with a rigid block named "piston" (solid_solver format), else from the flags.
+The closed boundary of a rigid slab [left, right] x (transverse box) moving along x: 4 segments (2D) or 6 quads
+(3D) with their vertices, so a real fluid_solver can embed it. Newton's law under the interface pressures of
+the previous cycle (paper section 8, step 1): F = -sum p A n_x, v += dt F / m, x += dt v (symplectic Euler, as
+solid_solver's leapfrog). Defaults come from the scene's solid: section when it describes a box mesh with a
+rigid block named "piston" (solid_solver format), else from the flags (--area: 2D height x 1 m).
 Writes DIR/piston.csv (t, x, v, F) at every OutputRequest.
 """
 import argparse
@@ -33,9 +34,40 @@ def defaults_from_scene(path):
         area = 1.0
         for d in range(1, len(lo)):
             area *= hi[d] - lo[d]
-        return blocks["piston"]["density"] * (right - left) * area, area, left, right
+        return blocks["piston"]["density"] * (right - left) * area, area, left, right, lo[1:], hi[1:]
     except Exception:
         return None
+
+
+def box_faces(dim, x0, x1, lower, upper, v):
+    """The closed boundary of the slab [x0, x1] x [lower, upper] (2D: 4 segments, 3D: 6 quads), outward normals,
+    vertices and the rigid velocity (v, 0, 0); impedance +inf (rigid), no stress."""
+    if dim == 2:
+        (y0,), (y1,) = lower, upper
+        verts = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+        faces = [(3, 0), (1, 2), (0, 1), (2, 3)]  # -x, +x, -y, +y
+        normals = [(-1, 0), (1, 0), (0, -1), (0, 1)]
+    else:
+        (y0, z0), (y1, z1) = lower, upper
+        verts = [(x, y, z) for z in (z0, z1) for y in (y0, y1) for x in (x0, x1)]  # index = x + 2y + 4z
+        faces = [(0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6)]
+        normals = [(-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (0, 0, -1), (0, 0, 1)]
+    centre, area = [], []
+    for f, n in zip(faces, normals):
+        pts = [verts[i] for i in f]
+        centre += [sum(p[d] for p in pts) / len(pts) for d in range(dim)]
+        size = 1.0
+        for d in range(dim):
+            if n[d] == 0:
+                size *= max(p[d] for p in pts) - min(p[d] for p in pts)
+        area.append(size)
+    return {
+        "dim": dim, "centre": centre, "normal": [c for n in normals for c in n], "area": area,
+        "velocity": ([v] + [0.0] * (dim - 1)) * len(faces),
+        "normal_stress": [0.0] * len(faces), "impedance": [math.inf] * len(faces),
+        "nodes_per_face": len(faces[0]), "vertex_position": [c for p in verts for c in p],
+        "face_vertex": [i for f in faces for i in f],
+    }
 
 
 def main():
@@ -53,12 +85,20 @@ def main():
     ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
     ap.add_argument("--dt", type=float, default=1.0, help="largest step proposed [s]")
     a = ap.parse_args()
-    d = defaults_from_scene(a.scene) or (1.0, 1.0, -0.5, 0.5)
+    d = defaults_from_scene(a.scene) or (1.0, 1.0, -0.5, 0.5, [0.0] * (a.dim - 1), [1.0] * (a.dim - 1))
     m, area = a.mass or d[0], a.area or d[1]
     left = a.left if a.left is not None else d[2]
     right = a.right if a.right is not None else d[3]
+    lower, upper = d[4], d[5]
+    if len(lower) != a.dim - 1:
+        a.dim = len(lower) + 1  # the scene's solid mesh decides
+    if a.area and len(lower) == a.dim - 1 and a.dim == 2:
+        lower, upper = [0.0], [a.area]  # a given cross-section: height = area (x 1 m)
+    faces0 = box_faces(a.dim, left, right, lower, upper, 0.0)
+    areas = faces0["area"]
+    normals = [faces0["normal"][i * a.dim:(i + 1) * a.dim] for i in range(len(areas))]
     x, v, force = 0.0, a.v0, 0.0
-    p = [0.0, 0.0]  # interface pressure on the left and right face [Pa]
+    p = [0.0] * len(areas)  # interface pressure per face [Pa]
     os.makedirs(a.out, exist_ok=True)
     out = open(os.path.join(a.out, "piston.csv"), "w")
     out.write("time,x,v,force\n")
@@ -79,20 +119,10 @@ def main():
                 out.flush()
                 continue
             dt = value
-            force = (p[0] - p[1]) * area
+            force = sum(-pf * af * nf[0] for pf, af, nf in zip(p, areas, normals))
             v += dt * force / m
             x += dt * v
-            zero = [0.0] * (a.dim - 1)
-            ymid = [0.0] * (a.dim - 1)
-            c.send_faces({
-                "dim": a.dim,
-                "centre": [left + x] + ymid + [right + x] + ymid,
-                "normal": [-1.0] + zero + [1.0] + zero,
-                "area": [area, area],
-                "velocity": [v] + zero + [v] + zero,
-                "normal_stress": [0.0, 0.0],
-                "impedance": [math.inf, math.inf],
-            })
+            c.send_faces(box_faces(a.dim, left + x, right + x, lower, upper, v))
             st = c.receive_states()
             p = list(st.face_pressure)
             c.propose_dt(a.dt)
