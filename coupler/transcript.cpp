@@ -16,8 +16,9 @@ namespace {
 using google::protobuf::FieldDescriptor;
 using google::protobuf::Message;
 
+// 6 significant digits; |v| < 1e-12 (round-off noise such as a transverse velocity of 1e-35 m/s) is 0.
 double round6(double v) {
-  if (!std::isfinite(v) || v == 0.0) return v == 0.0 ? 0.0 : v;
+  if (!std::isfinite(v) || std::abs(v) < 1e-12) return std::isfinite(v) ? 0.0 : v;
   return std::strtod(fmt::format("{:.6g}", v).c_str(), nullptr);
 }
 

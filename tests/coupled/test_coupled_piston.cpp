@@ -1,0 +1,177 @@
+// Paper 9.3, coupled: the piston scenes run through `cosim run` (coupler + fluid_solver + solid_solver, or the
+// Python rigid piston), against the two-chamber ODE (numerics.md 8.2), its gas-inertia correction and the
+// conforming all-Lagrangian run of configs/solid_piston_1d.yaml.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "common/verification/piston_ode.h"
+#include "coupled_test_util.h"
+#include "solid_solver/core/simulation.h"
+
+using namespace cosim;
+using namespace cosim::test;
+
+namespace {
+
+// The piston scenes: chambers [-2, -1] and [0, 2] m at 2e5 and 1e5 Pa, gas 1 kg/m^3, gamma 1.4, piston of
+// density 100 and length 1 m; per unit cross-section (x(t) does not depend on A when m / A is fixed).
+verification::PistonOde piston_ode(bool gas_inertia) {
+  verification::PistonOde o;
+  o.area = 1.0;
+  o.mass = 100.0;
+  o.p_left = 2e5;
+  o.p_right = 1e5;
+  o.v_left = 1.0;
+  o.v_right = 2.0;
+  o.gamma = 1.4;
+  o.extra_mass = gas_inertia ? (1.0 + 2.0) / 3.0 : 0.0;
+  return o;
+}
+
+// x(t) of the conforming run (solid_piston_1d: 160 Lagrangian elements, rigid piston), every 0.5 ms.
+struct Trajectory {
+  double dt = 5e-4;
+  std::vector<double> x;
+  double at(double t) const {
+    const double u = t / dt;
+    const std::size_t i = std::min(static_cast<std::size_t>(u), x.size() - 2);
+    return x[i] + (x[i + 1] - x[i]) * (u - static_cast<double>(i));
+  }
+};
+
+const Trajectory& conforming_run() {
+  static Trajectory tr = [] {
+    Trajectory r;
+    solid::SolidScene s = solid::load_solid_scene(scene_file("solid_piston_1d").string(), {"solid.output.snapshots=false"});
+    solid::Simulation sim(s);
+    const double x0 = sim.rigid_bodies().at(0).X[0];
+    r.x.push_back(0.0);
+    for (int k = 1; k * r.dt <= s.t_end + 1e-12; ++k) {
+      const double target = k * r.dt;
+      while (sim.time() < target * (1 - 1e-14)) {
+        double dt = sim.stable_dt();
+        const double rem = target - sim.time();
+        if (dt >= rem) dt = rem;
+        else if (dt > 0.5 * rem) dt = 0.5 * rem;
+        sim.advance(dt);
+      }
+      r.x.push_back(sim.rigid_bodies().at(0).X[0] - x0);
+    }
+    return r;
+  }();
+  return tr;
+}
+
+struct Deviation {
+  double plain = 0, inertia = 0, conforming = 0;  // max |x - x_ref| / peak-to-peak amplitude of the plain ODE
+};
+
+Deviation piston_deviation(const History& h, double t_end) {
+  const auto plain = verification::integrate_piston(piston_ode(false), t_end, 1e-5);
+  const auto inertia = verification::integrate_piston(piston_ode(true), t_end, 1e-5);
+  const Trajectory& conf = conforming_run();
+  const double amp = plain.x_max() - plain.x_min();
+  Deviation d;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (h.t[i] > t_end) break;
+    const double x = h.cx[i] - h.cx[0];
+    d.plain = std::max(d.plain, std::abs(x - plain.x_at(h.t[i])) / amp);
+    d.inertia = std::max(d.inertia, std::abs(x - inertia.x_at(h.t[i])) / amp);
+    d.conforming = std::max(d.conforming, std::abs(x - conf.at(h.t[i])) / amp);
+  }
+  return d;
+}
+
+// One coupled run per (scene, arguments), shared by the tests of this file.
+const fs::path& run_once(const std::string& scene, const std::string& args = "") {
+  static std::map<std::string, fs::path> runs;
+  const std::string key = scene + "|" + args;
+  auto it = runs.find(key);
+  if (it != runs.end()) return it->second;
+  const fs::path dir = run_dir(scene + "_" + std::to_string(runs.size()));
+  const int rc = cosim_run(scene_file(scene), dir, args);
+  EXPECT_EQ(rc, 0) << run_logs(dir);
+  return runs[key] = dir;
+}
+
+void print(const char* what, const Deviation& d) {
+  std::printf("[ measured ] %s: max deviation %.2f%% from the ODE, %.2f%% from the ODE with gas inertia, %.2f%% from "
+              "the conforming run (of the ODE's peak-to-peak amplitude)\n",
+              what, 100 * d.plain, 100 * d.inertia, 100 * d.conforming);
+}
+
+}  // namespace
+
+// Density ratio 100, impedance conditions, second-order boundary, 40 x 8 background, three periods.
+TEST(CoupledPiston, HeavyPiston2DFollowsTheOdeAndTheConformingRun) {
+  const fs::path& dir = run_once("piston_2d");
+  const History h = read_history(dir);
+  ASSERT_GT(h.size(), 1000u);
+  EXPECT_NEAR(h.t.back(), 0.37, 1e-12);
+  const Deviation d = piston_deviation(h, 0.37);
+  print("piston_2d (impedance, order 2)", d);
+  // The plain ODE neglects the gas (3% of the piston mass): the conforming run itself is 4.3% away from it.
+  EXPECT_LT(d.plain, 0.06);
+  EXPECT_LT(d.inertia, 0.04);
+  EXPECT_LT(d.conforming, 0.04);
+  // No transverse motion of a piston in a straight channel.
+  for (std::size_t i = 0; i < h.size(); ++i) ASSERT_LT(std::abs(h.vy[i]), 1e-6 * (1 + std::abs(h.vx[i])));
+}
+
+// The Python rigid piston (python/rigid_piston.py) in place of solid_solver gives the same trajectory.
+TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
+  const fs::path& cpp = run_once("piston_2d");
+  const fs::path& py = run_once("piston_2d", "--solid-exe '/usr/bin/python3 " +
+                                                  (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string() +
+                                                  "'");
+  const History a = read_history(cpp), b = read_history(py);
+  ASSERT_GT(b.size(), 1000u);
+  EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
+  double worst = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) worst = std::max(worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
+  std::printf("[ measured ] Python piston vs solid_solver: max |dx| = %.3e m over %zu cycles\n", worst, b.size());
+  EXPECT_LT(worst, 0.005 * 0.7177);  // 0.5% of the amplitude (the step sequences differ slightly)
+  EXPECT_TRUE(fs::exists(py / "solid" / "piston.csv"));
+}
+
+// The same piston in 3D on the paper's 40 x 8 x 8 background: the flow is one-dimensional, so the 3D run
+// must follow the 2D one (first 30 ms: the piston's first stroke).
+TEST(CoupledPiston, Piston3DMatchesThe2DRun) {
+  const std::string end = " --set coupling.time.end=0.03 --set coupling.output.interval=0.01";
+  const fs::path& d3 = run_once("piston_3d", end);
+  const fs::path& d2 = run_once("piston_2d", end);
+  const History a = read_history(d2), b = read_history(d3);
+  ASSERT_GT(b.size(), 100u);
+  double worst = 0, travel = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    worst = std::max(worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
+    travel = std::max(travel, std::abs(b.cx[i] - b.cx[0]));
+  }
+  std::printf("[ measured ] 3D vs 2D piston over 30 ms: max |dx| = %.3e m of %.3f m travel\n", worst, travel);
+  EXPECT_GT(travel, 0.3);
+  EXPECT_LT(worst, 0.01 * travel);
+}
+
+// Density ratio 0.01 (paper Fig. 7c): a light gas piston. Impedance conditions run smoothly; the standard
+// conditions (fluid takes the solid's velocity, the light solid takes the fluid's pressure) ring and blow up.
+TEST(CoupledPiston, LightPistonSmoothWithImpedanceConditionsOnly) {
+  const fs::path& imp = run_once("piston_light_2d");
+  const History hi = read_history(imp);
+  ASSERT_GT(hi.size(), 1000u);
+  const double tv_imp = relative_total_variation(hi.vx);
+  const fs::path std_dir = run_dir("piston_light_standard");
+  const int rc = cosim_run(scene_file("piston_light_2d"), std_dir, "--set coupling.mode=standard");
+  const History hs = read_history(std_dir);
+  const double tv_std = relative_total_variation(hs.vx);
+  std::printf("[ measured ] light piston: impedance: %zu cycles, velocity TV/range %.1f; standard: exit %d after %zu "
+              "cycles, TV/range %.1f\n",
+              hi.size(), tv_imp, rc, hs.size(), tv_std);
+  EXPECT_LT(tv_imp, 20.0);
+  EXPECT_TRUE(rc != 0 || tv_std > 3 * tv_imp) << run_logs(std_dir);
+  if (rc != 0) {  // a clean stop that names the failing solver
+    EXPECT_NE(read_text(fs::path(std_dir.string() + ".log")).find("failed"), std::string::npos);
+  }
+}
