@@ -66,7 +66,8 @@ struct Loop {
         prev_wetted.size() == s.wetted.size()) {
       const double r = dt / (t - prev_time);
       for (int f = 0; f < s.count; ++f) {
-        if (!s.wetted[f] || !prev_wetted[f]) continue;
+        const bool wet = s.wetted.empty() || s.wetted[f], was_wet = prev_wetted.empty() || prev_wetted[f];
+        if (!wet || !was_wet) continue;
         for (int k = 0; k < s.phases; ++k) {
           const std::size_t i = static_cast<std::size_t>(f) * s.phases + k;
           const double p = s.pressure[i] + r * (s.pressure[i] - prev_pressure[i]);

@@ -9,7 +9,8 @@ coupler/ and solid/); a bare fluid_solver output directory (fluid_NNNNNN.h5 in i
 Writes into --out (default RUN_DIR/plots/):
 
   motion.png     coupled: structure displacement (interface centre_x - its initial value) and velocity
-                 against time; for a piston scene (name "piston...") also the two-chamber adiabatic ODE
+                 against time; for a piston scene (name "piston...", rigid block "piston") also the
+                 two-chamber adiabatic ODE
                    m x'' = A [pL0 (VL0/(VL0 + A x))^g - pR0 (VR0/(VR0 - A x))^g],  x(0) = x'(0) = 0,
                  the same ODE with the gas inertia (m + m_gas/3, dashed) and, with --reference, the
                  conforming all-Lagrangian run of `solid_solver configs/solid_piston_1d.yaml --out DIR`
@@ -93,8 +94,11 @@ def read_csv_columns(path):
         raise RunError(f"{path}: {e.strerror}") from e
     if len(rows) < 2:
         raise RunError(f"{path}: no data rows")
+    if len(rows[-1]) != len(rows[0]) and len(rows) < 3:
+        raise RunError(f"{path}: no complete data row")
     try:
-        data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
+        width = len(rows[0])  # a run still in progress may have a partly written last line
+        data = np.array([[float(v) for v in r] for r in rows[1:] if len(r) == width], dtype=float)
     except ValueError as e:
         raise RunError(f"{path}: {e}") from e
     return {name: data[:, i] for i, name in enumerate(rows[0])}
@@ -170,7 +174,10 @@ def piston_parameters(scene):
     volume = 1.0
     for d in range(len(plo)):
         volume *= phi[d] - plo[d]
-    density = next(b for b in solid["blocks"] if b["name"] == "piston")["density"]
+    block = next(b for b in solid["blocks"] if b["name"] == "piston")
+    if not block.get("rigid", False):
+        raise ValueError("solid block 'piston' is not rigid: the two-chamber ODE is for a rigid piston")
+    density = block["density"]
     gamma = fluid["phases"][0]["eos"]["gamma"]
     mid = [0.5 * (flo[d] + fhi[d]) for d in range(dim)]
     left = state_at(fluid["initial"], [0.5 * (flo[0] + plo[0])] + mid[1:], dim)
@@ -266,8 +273,11 @@ def plot_motion(hist, refs, title, out_dir):
         disp = hist[f"centre_{comp}"] - hist[f"centre_{comp}"][0]
         vel = hist[f"velocity_{comp}"]
         scale = max(np.max(np.abs(hist["centre_x"] - hist["centre_x"][0])), 1e-30)
-        if comp != "x" and np.max(np.abs(disp)) < 1e-6 * scale:
-            continue  # a component that does not move (round-off only)
+        if comp != "x" and np.max(np.abs(disp)) < 1e-3 * scale:  # would be a flat line on this scale
+            if np.any(disp) or np.any(vel):
+                print(f"motion in {comp} not plotted: max |displacement| {np.max(np.abs(disp)):.3g} m, "
+                      f"max |velocity| {np.max(np.abs(vel)):.3g} m/s")
+            continue
         ax_x.plot(t, disp, lw=1.6, label=f"coupled run ({comp})")
         ax_v.plot(t, vel, lw=1.6, label=f"coupled run ({comp})")
     for r in refs:
@@ -286,20 +296,20 @@ def plot_motion(hist, refs, title, out_dir):
 def plot_interface(hist, par, title, out_dir):
     """Area-mean interface pressure and the interface force against time."""
     t = hist["time"]
-    fig, (ax_p, ax_f) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    fig, (ax_p, ax_f) = plt.subplots(2, 1, figsize=(11, 6.5), sharex=True)
     ax_p.plot(t, hist["pressure"], lw=1.4, color="C0")
     ax_p.set_ylabel("mean interface pressure [Pa]\n(area mean over all faces)")
     for comp in "xyz":
         f = hist[f"force_{comp}"]
-        if comp == "x" or np.max(np.abs(f)) > 1e-6 * np.max(np.abs(hist["force_x"])):
+        if comp == "x" or np.max(np.abs(f)) > 1e-3 * np.max(np.abs(hist["force_x"])):
             ax_f.plot(t, f, lw=1.4, label=f"force_{comp} (run)")
     if par is not None:
         x = hist["centre_x"] - hist["centre_x"][0]
         ax_f.plot(t, ode_force(par, x), "k--", lw=1.0,
-                  label="A [pL(x) - pR(x)] at the run's x (adiabatic chambers)")
+                  label="A [pL(x) - pR(x)]\nat the run's x\n(adiabatic chambers)")
     ax_f.set_ylabel("force [N]")
     ax_f.set_xlabel("time [s]")
-    ax_f.legend(fontsize=8)
+    ax_f.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax_p.set_title(title)
     for ax in (ax_p, ax_f):
         ax.grid(alpha=0.3)
@@ -449,9 +459,14 @@ def piston_references(scene, hist, reference_dir):
     try:
         par = piston_parameters(scene)
     except (KeyError, TypeError, IndexError, ValueError, StopIteration) as e:
-        print(f"piston ODE skipped: scene.yaml lacks what it needs ({e})")
+        print(f"piston ODE skipped: {e}" if isinstance(e, ValueError) else
+              f"piston ODE skipped: scene.yaml lacks what it needs ({e!r})")
         return None, []
     t_end = float(hist["time"][-1])
+    try:  # the whole scheduled run, so that the amplitude is the ODE's even for a run still in progress
+        t_end = max(t_end, float(scene["coupling"]["time"]["end"]))
+    except (KeyError, TypeError, ValueError):
+        pass
     t, x, v = solve_piston_ode(par, 0.0, t_end)
     amp = float(x.max() - x.min())
     print(f"piston ODE: A = {par['A']:.4g} m^2, m = {par['m']:.4g} kg, gamma = {par['gamma']:.4g}, "
@@ -502,6 +517,8 @@ def main(argv=None):
                 print(f"--reference ignored: scene '{name}' is not a piston scene")
             plot_motion(hist, refs, f"{name}: structure (interface centre) motion", out_dir)
             plot_interface(hist, par, f"{name}: interface pressure and force", out_dir)
+        elif args.reference:
+            print("--reference ignored: not a coupled run (no coupler/interface_history.csv)")
         if run["fluid"]:
             plot_fields(run["fluid"], out_dir, mask_ghosts=not args.show_ghosts)
         if os.path.isfile(run["timing"]):
