@@ -162,6 +162,7 @@ struct Loop {
         break;
       }
       if (n >= cfg.max_cycles) {
+        output(n);  // the state where the run stopped
         sum.message = fmt::format("stopped at max_cycles = {} (t = {:.9g} s)", cfg.max_cycles, t);
         spdlog::warn("{}", sum.message);
         break;

@@ -1,0 +1,114 @@
+// Coupled scenes other than the piston's accuracy: paper 9.2 advection with a solid_solver block, the
+// protocol transcript of the real piston scene, and a solver killed in the middle of a real run.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "common/io/hdf5_file.h"
+#include "coupled_test_util.h"
+
+using namespace cosim;
+using namespace cosim::test;
+
+// Paper 9.2: a rigid block moving diagonally with the flow, 13 x 13, 200 cycles: the flow stays uniform to
+// 1e-10 relative, the block keeps its velocity, the interface pressure is the fluid's.
+TEST(CoupledScenes, AdvectedBlockCreatesNoFlow) {
+  const fs::path dir = run_dir("advection");
+  ASSERT_EQ(cosim_run(scene_file("coupled_advection"), dir), 0) << run_logs(dir);
+  const History h = read_history(dir);
+  ASSERT_EQ(h.size(), 201u);  // cycles 0..200
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    ASSERT_NEAR(h.vx[i], 0.1, 1e-11) << i;
+    ASSERT_NEAR(h.vy[i], 0.1, 1e-11) << i;
+    ASSERT_NEAR(h.pressure[i], 1.0, 1e-10) << i;
+    ASSERT_NEAR(h.force_x[i], 0.0, 1e-10) << i;
+  }
+  EXPECT_GT(h.cx.back() - h.cx.front(), 0.2);  // it did move (more than 2.5 cells)
+  io::Hdf5File last(dir / "fluid" / "fluid_000001.h5", io::Hdf5File::Mode::ReadOnly);
+  const auto cat = last.read_doubles("/cell/embedded_category");
+  const auto p = last.read_doubles("/cell/gas_pressure");
+  const auto u = last.read_doubles("/cell/gas_velocity");
+  const auto rho = last.read_doubles("/cell/gas_density");
+  ASSERT_EQ(cat.size(), 169u);
+  int flow = 0, body = 0;
+  double worst = 0;
+  for (std::size_t c = 0; c < cat.size(); ++c) {
+    if (cat[c] > 1) {
+      ++body;
+      continue;
+    }
+    ++flow;
+    worst = std::max({worst, std::abs(p[c] - 1.0), std::abs(rho[c] - 1.0), std::abs(u[3 * c] - 0.1) / 0.1,
+                      std::abs(u[3 * c + 1] - 0.1) / 0.1, std::abs(u[3 * c + 2]) / 0.1});
+  }
+  std::printf("[ measured ] coupled advection: %d flow cells, %d body cells, max relative deviation %.2e\n", flow,
+              body, worst);
+  EXPECT_GT(body, 4);
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_NEAR(last.read_double_attribute("/", "time").at(0), h.t.back(), 1e-9);  // history: 12 digits
+}
+
+// Protocol regression of the real piston scene: the messages of its first cycles in protobuf text form (numbers
+// to 6 digits). Any change to what crosses the wire fails here; accept on purpose with COSIM_UPDATE_TRANSCRIPT=1
+// and review the diff.
+TEST(CoupledScenes, PistonSceneTranscriptOfTheFirstCycles) {
+  const fs::path dir = run_dir("transcript");
+  const fs::path got = fs::path(dir.string() + "_transcript.txt");
+  ASSERT_EQ(cosim_run(scene_file("piston_2d"), dir,
+                      "--set coupling.time.max_cycles=2 --coupler-exe '" + bin("coupler").string() + " --transcript " +
+                          got.string() + "'"),
+            0)
+      << run_logs(dir);
+  const fs::path expected = fs::path(COSIM_SOURCE_DIR) / "tests/coupled/data/transcript_piston_2d.txt";
+  if (std::getenv("COSIM_UPDATE_TRANSCRIPT")) fs::copy_file(got, expected, fs::copy_options::overwrite_existing);
+  const std::string a = read_text(expected), b = read_text(got);
+  ASSERT_FALSE(b.empty());
+  EXPECT_NE(b.find("faces {"), std::string::npos);
+  EXPECT_NE(b.find("samples {"), std::string::npos);
+  EXPECT_EQ(a, b) << "the piston scene's protocol transcript changed: diff " << expected << " " << got
+                  << " (COSIM_UPDATE_TRANSCRIPT=1 accepts it)";
+}
+
+// A solver killed in the middle of a real coupled run: the launcher and the others stop within 5 s, the
+// launcher names the process, nothing is left running, the snapshots written so far stay readable.
+TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
+  const fs::path dir = run_dir("killed");
+  const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
+                          dir.string() + " --quiet --set coupling.time.end=100 > " + dir.string() + ".log 2>&1 & echo $!";
+  FILE* f = ::popen(cmd.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  long launcher_pid = 0;
+  ASSERT_EQ(std::fscanf(f, "%ld", &launcher_pid), 1);
+  ::pclose(f);
+  // Wait until the run is under way (a snapshot exists), then kill the fluid solver.
+  for (int i = 0; i < 200 && !fs::exists(dir / "fluid" / "fluid_000001.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(fs::exists(dir / "fluid" / "fluid_000001.h5")) << run_logs(dir);
+  const std::string kill = "pkill -KILL -f '^" + bin("fluid_solver").string() + " " + dir.string() + "/scene.yaml'";
+  ASSERT_EQ(std::system(kill.c_str()), 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  bool gone = false;
+  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(10)) {
+    if (::kill(static_cast<pid_t>(launcher_pid), 0) != 0) {
+      gone = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("[ measured ] killed fluid_solver: the launcher ended %.2f s later\n", waited);
+  ASSERT_TRUE(gone) << run_logs(dir);
+  EXPECT_LT(waited, 5.0);
+  const std::string log = read_text(fs::path(dir.string() + ".log"));
+  EXPECT_NE(log.find("fluid"), std::string::npos) << log;
+  // [s]: the shell running pgrep must not match its own pattern
+  const std::string left = "pgrep -f '" + dir.string() + "/[s]cene.yaml' > /dev/null";
+  EXPECT_NE(std::system(left.c_str()), 0) << "a process of the run is still alive";
+  io::Hdf5File snap(dir / "fluid" / "fluid_000001.h5", io::Hdf5File::Mode::ReadOnly);
+  EXPECT_EQ(snap.read_doubles("/cell/gas_pressure").size(), 320u);
+}
