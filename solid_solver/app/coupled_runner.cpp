@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "common/coupling/client.h"
 #include "common/coupling/scene_hash.h"
@@ -55,9 +56,25 @@ int run_solid_coupled(const RunOptions& opt) {
   RunRecord rec;
   rec.start = sim->energy();
   double solver_seconds = 0;
+  long substeps = 0;
+  coupling::InterfaceStates last;  // held over the substeps of the next cycle
+  bool apply_velocity = false;
   const auto cycle = [&](const coupling::Directive& d) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (d.dt > 0) sim->advance(d.dt);  // with the face pressures of the previous cycle
+    // With the face pressures of the previous cycle; in substeps when the coupled step is longer than the
+    // solid's stable step (numerics.max_subcycles > 1), the interface pressure and velocity held over them.
+    if (d.dt > 0) {
+      const int n = std::max(1, static_cast<int>(std::ceil(d.dt / sim->stable_dt() - 1e-9)));
+      if (n > scene.numerics.max_subcycles)
+        throw app::NumericalError(fmt::format("the coupled step {:.4g} s needs {} solid substeps, more than "
+                                              "solid.numerics.max_subcycles = {}",
+                                              d.dt, n, scene.numerics.max_subcycles));
+      for (int k = 0; k < n; ++k) {
+        if (k > 0 && apply_velocity) sim->set_face_normal_velocities(last.face_normal_velocity, last.face_wetted);
+        sim->advance(d.dt / n);
+      }
+      substeps += n;
+    }
     const coupling::Faces faces = interface_faces(sim->boundary_faces(), map, sim->state());
     solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     client->send_faces(faces);
@@ -69,9 +86,10 @@ int run_solid_coupled(const RunOptions& opt) {
       throw std::invalid_argument(fmt::format("InterfaceStates.face_pressure: {} values for {} faces",
                                               st.face_pressure.size(), st.count));
     sim->set_face_pressures(st.face_pressure);
-    if (client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size())
-      sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
-    client->propose_dt(sim->stable_dt());
+    apply_velocity = client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
+    if (apply_velocity) sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
+    last = st;
+    client->propose_dt(scene.numerics.max_subcycles * sim->stable_dt());
   };
   const auto output = [&](const coupling::Directive&) {
     if (scene.write_snapshots) write_snapshot(series, *sim);
@@ -83,7 +101,8 @@ int run_solid_coupled(const RunOptions& opt) {
   rec.extra["coupling"] = {{"endpoint", opt.coupler},
                            {"cycles", res.cycles},
                            {"snapshots", res.snapshots},
-                           {"solver_seconds", solver_seconds}};
+                           {"solver_seconds", solver_seconds},
+                           {"solid_steps", substeps}};
   try {
     write_summary(opt.out_dir, *sim, rec);
   } catch (const std::exception& e) {

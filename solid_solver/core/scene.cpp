@@ -312,6 +312,7 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     nu.dt_growth = num->get<double>("dt_growth", nu.dt_growth, config::in_range(1.0, 10.0));
     nu.dt_initial = num->get<double>("dt_initial", nu.dt_initial, config::non_negative());
     nu.dt_min = num->get<double>("dt_min", nu.dt_min, config::non_negative());
+    nu.max_subcycles = num->get<int>("max_subcycles", nu.max_subcycles, config::int_at_least(1));
     num->finish();
   }
 

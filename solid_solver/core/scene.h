@@ -56,6 +56,8 @@ struct Numerics {
   double dt_growth = 1.2;     // largest ratio of successive time steps
   double dt_initial = 0.0;    // [s] first time step (0: the stable step)
   double dt_min = 0.0;        // [s] a step below this is a numerical failure
+  int max_subcycles = 1;      // coupled runs: up to this many solid steps per coupled cycle, the interface
+                              // pressure held (1: the solid's stable step limits the coupled step)
 };
 
 struct SolidScene {
