@@ -55,6 +55,8 @@ struct Loop {
   // linearly to t^{n+1} from this and the previous cycle's samples (a second-order predictor, as in
   // Farhat & Lesoinne's staggered schemes); unchanged where a face was not wetted both times or the
   // extrapolation would not be positive.
+  coupling::Faces last_faces;  // of the last cycle, for the interface snapshots
+  coupling::InterfaceStates last_states;
   std::vector<double> prev_pressure;
   std::vector<char> prev_wetted;
   double prev_time = 0;
@@ -128,6 +130,8 @@ struct Loop {
     tm.wall = c1 - start;
     tm.coupler = coupler_time;
     history.record(n, t + dt, dt, faces, st, tm);
+    last_faces = faces;
+    last_states = st;
     tm.coupler += now_s() - c1;
     sum.total.wall += tm.wall;
     sum.total.solid += tm.solid;
@@ -145,6 +149,7 @@ struct Loop {
       pb::Envelope o = envelope(hub, n, t);
       o.mutable_output_request()->set_index(out_index++);
       send_both(o);
+      history.snapshot(n, t, last_faces, last_states);
     };
     for (long n = 0;; ++n) {
       const double proposal = cycle(n, t, dt);
@@ -181,7 +186,7 @@ struct Loop {
 RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir) {
   RunSummary s;
   try {
-    Loop loop{cfg, hub, History(out_dir), {}, {}, {}, 0.0, false};
+    Loop loop{cfg, hub, History(out_dir), {}, {}, {}, {}, {}, 0.0, false};
     try {
       loop.run();
       return loop.sum;

@@ -17,7 +17,7 @@ std::ofstream open(const std::filesystem::path& p) {
 }
 }  // namespace
 
-History::History(const std::filesystem::path& dir) : dir_(dir) {
+History::History(const std::filesystem::path& dir) : dir_(dir), interface_(dir, "interface") {
   hist_ = open(dir / "interface_history.csv");
   timing_ = open(dir / "timing.csv");
   hist_ << "cycle,time,dt,force_x,force_y,force_z,velocity_x,velocity_y,velocity_z,centre_x,centre_y,centre_z,"
@@ -60,6 +60,29 @@ void History::progress(long cycle, double time, double t_end, bool force) {
   }
   std::error_code ec;
   std::filesystem::rename(tmp, dir_ / "progress.txt", ec);
+}
+
+void History::snapshot(long cycle, double time, const coupling::Faces& f, const coupling::InterfaceStates& st) {
+  const bool polygons = (f.dim == 2 && f.nodes_per_face == 2) || (f.dim == 3 && f.nodes_per_face == 4);
+  if (!polygons || f.count == 0 || st.count != f.count) return;
+  const std::vector<std::int64_t> conn(f.face_vertex.begin(), f.face_vertex.end());
+  const io::UnstructuredGrid g{f.dim, f.vertex_position.data(), static_cast<std::int64_t>(f.vertex_position.size() / f.dim),
+                               conn.data(), f.count, f.nodes_per_face};
+  std::vector<double> wetted(f.count, 1.0), p(f.count, 0.0), u(f.count, 0.0);
+  for (int i = 0; i < f.count; ++i) {
+    if (!st.face_wetted.empty()) wetted[i] = st.face_wetted[i] ? 1.0 : 0.0;
+    if (!st.face_pressure.empty()) p[i] = st.face_pressure[i];
+    if (!st.face_normal_velocity.empty()) u[i] = st.face_normal_velocity[i];
+  }
+  const std::vector<io::FieldView> fields = {
+      {"pressure", p.data(), 1, io::Center::Cell},
+      {"normal_velocity", u.data(), 1, io::Center::Cell},
+      {"normal_stress", f.normal_stress.data(), 1, io::Center::Cell},
+      {"impedance", f.impedance.data(), 1, io::Center::Cell},
+      {"wetted", wetted.data(), 1, io::Center::Cell},
+      {"normal", f.normal.data(), f.dim, io::Center::Cell},
+      {"velocity", f.velocity.data(), f.dim, io::Center::Cell}};
+  interface_.write(time, cycle, g, fields);
 }
 
 }  // namespace cosim::coupler

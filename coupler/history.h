@@ -3,12 +3,16 @@
 //                          area-weighted mean face velocity [m/s] and centre [m] (x, y, z), mean face pressure [Pa]
 //   timing.csv             cycle, wall [s], solid busy, fluid busy, coupler compute, communication/wait [s]
 //   progress.txt           one line "cycle time t_end", replaced at most twice a second (the launcher reads it)
+//   interface_NNNNNN.h5 + interface.xmf   at every output request: the interface faces (segments in 2D, quads
+//                          in 3D, as the solid sent them) with cell fields pressure, normal_velocity (u_I . n),
+//                          normal_stress, impedance, wetted, normal, velocity (ParaView: Xdmf3 reader)
 #pragma once
 
 #include <filesystem>
 #include <fstream>
 
 #include "common/coupling/types.h"
+#include "common/io/snapshot_writer.h"
 
 namespace cosim::coupler {
 
@@ -23,11 +27,14 @@ class History {
   void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st,
               const CycleTiming& timing);
   void progress(long cycle, double time, double t_end, bool force = false);
+  // One interface snapshot; skipped when the faces carry no vertex data (or triangles).
+  void snapshot(long cycle, double time, const coupling::Faces& faces, const coupling::InterfaceStates& st);
 
  private:
   std::filesystem::path dir_;
   std::ofstream hist_, timing_;
   double last_progress_ = -1e300;
+  io::SnapshotSeries interface_;
 };
 
 }  // namespace cosim::coupler

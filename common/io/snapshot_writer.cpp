@@ -198,12 +198,20 @@ std::string uniform_grid_xml(const UniformGrid& g) {
 
 // ---------------------------------------------------------------- unstructured grids
 
-const char* cell_type_name(const UnstructuredGrid& g) { return g.dim == 2 ? "quadrilateral" : "hexahedron"; }
-const char* xdmf_topology(const UnstructuredGrid& g) { return g.dim == 2 ? "Quadrilateral" : "Hexahedron"; }
+const char* cell_type_name(const UnstructuredGrid& g) {
+  return g.nodes_per_cell == 2 ? "line" : g.nodes_per_cell == 4 ? "quadrilateral" : "hexahedron";
+}
+// TopologyType (and NodesPerElement where XDMF needs it).
+const char* xdmf_topology(const UnstructuredGrid& g) {
+  return g.nodes_per_cell == 2 ? "Polyline\" NodesPerElement=\"2" : g.nodes_per_cell == 4 ? "Quadrilateral" : "Hexahedron";
+}
 
 void check_unstructured(const UnstructuredGrid& g) {
-  if (!((g.dim == 2 && g.nodes_per_cell == 4) || (g.dim == 3 && g.nodes_per_cell == 8))) {
-    reject(fmt::format("unstructured grid must be dim 2 with 4 nodes per cell or dim 3 with 8, not dim {} with {}",
+  const bool ok = (g.dim == 2 && (g.nodes_per_cell == 4 || g.nodes_per_cell == 2)) ||
+                  (g.dim == 3 && (g.nodes_per_cell == 8 || g.nodes_per_cell == 4));
+  if (!ok) {
+    reject(fmt::format("unstructured grid must be dim 2 with 4 (quads) or 2 (segments) nodes per cell, or dim 3 "
+                       "with 8 (hexahedra) or 4 (surface quads), not dim {} with {}",
                        g.dim, g.nodes_per_cell));
   }
   if (g.num_nodes < 1 || g.num_cells < 1) reject("unstructured grid needs at least one node and one cell");

@@ -13,7 +13,7 @@
 //   /grid               attributes: type = "uniform" | "unstructured" (string), dim (int64)
 //     uniform grid:     attributes cells (int64[3]), origin (double[3]), spacing (double[3]), all in x, y, z
 //                       order; unused dimensions are stored as cells 1, origin 0, spacing 1
-//     unstructured:     attribute cell_type = "quadrilateral" | "hexahedron" (string)
+//     unstructured:     attribute cell_type = "quadrilateral" | "hexahedron" | "line" (string)
 //                       dataset coordinates  double [num_nodes, 3]   (z = 0 in 2D)
 //                       dataset connectivity int64  [num_cells, nodes_per_cell]   0-based node ids, VTK order
 //   /cell/<name>        one dataset per cell field (group always present, may be empty)
@@ -61,7 +61,8 @@ struct UniformGrid {
   std::array<double, 3> spacing;
 };
 
-// Unstructured grid of quads (dim 2, nodes_per_cell 4) or hexahedra (dim 3, nodes_per_cell 8), VTK node order.
+// Unstructured grid of quads (dim 2, nodes_per_cell 4) or hexahedra (dim 3, nodes_per_cell 8), VTK node order;
+// or a surface: segments (dim 2, nodes_per_cell 2; XDMF Polyline) or quads (dim 3, nodes_per_cell 4).
 // coords: `dim` values per node, interleaved; they may change between snapshots (Lagrangian mesh).
 // connectivity: nodes_per_cell 0-based node ids per cell.
 struct UnstructuredGrid {

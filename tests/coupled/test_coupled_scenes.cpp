@@ -51,6 +51,15 @@ TEST(CoupledScenes, AdvectedBlockCreatesNoFlow) {
   EXPECT_GT(body, 4);
   EXPECT_LT(worst, 1e-10);
   EXPECT_NEAR(last.read_double_attribute("/", "time").at(0), h.t.back(), 1e-9);  // history: 12 digits
+  // The coupler's interface snapshot of the same time: 14 segments, all wetted, at the fluid's pressure.
+  io::Hdf5File iface(dir / "coupler" / "interface_000001.h5", io::Hdf5File::Mode::ReadOnly);
+  const auto ip = iface.read_doubles("/cell/pressure"), wet = iface.read_doubles("/cell/wetted");
+  ASSERT_EQ(ip.size(), 14u);
+  for (std::size_t i = 0; i < ip.size(); ++i) {
+    EXPECT_NEAR(ip[i], 1.0, 1e-12);
+    EXPECT_EQ(wet[i], 1.0);
+  }
+  EXPECT_TRUE(fs::exists(dir / "coupler" / "interface.xmf"));
 }
 
 // Protocol regression of the real piston scene: the messages of its first cycles in protobuf text form (numbers
