@@ -24,6 +24,7 @@ namespace cosim::fluid::coupled {
 struct SampleOptions {
   double min_flow_weight = 0.5;
   int max_pushes = 2;
+  bool extrapolate_pressure = true;  // pressure extrapolated linearly to the wall from two points
 };
 
 template <int DIM>
@@ -45,6 +46,56 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   std::array<std::size_t, NS> cells{};
   std::array<double, NS> w{};
   std::vector<CellSample> states(static_cast<std::size_t>(NS) * np);
+  // Per phase at point x: alpha, rho, u . n, p, c from the flow cells of the stencil; false when they carry
+  // less than min_flow_weight of it.
+  struct Values {
+    double a, rho, un, p, c;
+  };
+  std::vector<Values> vals(static_cast<std::size_t>(np)), far(static_cast<std::size_t>(np));
+  const auto evaluate = [&](const std::array<double, 3>& x, const std::array<double, 3>& n, std::vector<Values>& v) {
+    std::array<int, 3> base{0, 0, 0};
+    std::array<double, 3> t{0, 0, 0};
+    for (int d = 0; d < DIM; ++d) {  // cell-centre lattice, clamped to the interior cells
+      const double u = std::clamp((x[d] - g.lower[d]) / g.dx[d] - 0.5, 0.0, g.n[d] - 1.0);
+      base[d] = std::min(static_cast<int>(u), std::max(g.n[d] - 2, 0));
+      t[d] = g.n[d] > 1 ? u - base[d] : 0.0;
+    }
+    double flow = 0;
+    for (int k = 0; k < NS; ++k) {
+      std::array<int, 3> ijk{0, 0, 0};
+      double wk = 1;
+      for (int d = 0; d < DIM; ++d) {
+        const int bit = (k >> d) & 1;
+        ijk[d] = std::min(base[d] + bit, g.n[d] - 1);
+        wk *= bit ? t[d] : 1.0 - t[d];
+      }
+      cells[k] = g.index(ijk[0], ijk[1], ijk[2]);
+      w[k] = kind.empty() || is_flow_cell(kind[cells[k]]) ? wk : 0.0;
+      flow += w[k];
+    }
+    if (flow < opt.min_flow_weight) return false;
+    sim.cell_states(cells.data(), NS, states.data());
+    for (int k = 0; k < np; ++k) {
+      Values s{0, 0, 0, 0, 0};
+      for (int q = 0; q < NS; ++q) {
+        if (w[q] == 0) continue;
+        const CellSample& cs = states[static_cast<std::size_t>(q) * np + k];
+        const double wq = w[q] / flow;
+        s.a += wq * cs.alpha;
+        s.rho += wq * cs.rho;
+        s.p += wq * cs.p;
+        s.c += wq * cs.c;
+        for (int d = 0; d < DIM; ++d) s.un += wq * cs.velocity[d] * n[d];
+      }
+      v[static_cast<std::size_t>(k)] = s;
+    }
+    return true;
+  };
+  const auto inside = [&](const std::array<double, 3>& x) {
+    for (int d = 0; d < DIM; ++d)
+      if (x[d] < g.lower[d] || x[d] > g.lower[d] + g.n[d] * g.dx[d]) return false;
+    return true;
+  };
   for (int f = 0; f < faces.count; ++f) {
     std::array<double, 3> c{0, 0, 0}, n{0, 0, 0};
     double h = 0;
@@ -53,59 +104,35 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
       n[d] = faces.normal[static_cast<std::size_t>(f) * DIM + d];
       h += std::abs(n[d]) * g.dx[d];
     }
-    bool found = false;
-    for (int push = 0; push <= opt.max_pushes && !found; ++push) {
-      std::array<double, 3> x{0, 0, 0};
-      bool inside = true;
+    for (int push = 0; push <= opt.max_pushes; ++push) {
+      const double s1 = (1.0 + push) * h;
+      std::array<double, 3> x{0, 0, 0}, x2{0, 0, 0};
       for (int d = 0; d < DIM; ++d) {
-        x[d] = c[d] + (1.0 + push) * h * n[d];
-        const double hi = g.lower[d] + g.n[d] * g.dx[d];
-        if (x[d] < g.lower[d] || x[d] > hi) inside = false;
+        x[d] = c[d] + s1 * n[d];
+        x2[d] = c[d] + (s1 + h) * n[d];
       }
-      if (!inside) break;  // left the fluid domain: not wetted
-      std::array<int, 3> base{0, 0, 0};
-      std::array<double, 3> t{0, 0, 0};
-      for (int d = 0; d < DIM; ++d) {  // cell-centre lattice, clamped to the interior cells
-        const double u = std::clamp((x[d] - g.lower[d]) / g.dx[d] - 0.5, 0.0, g.n[d] - 1.0);
-        base[d] = std::min(static_cast<int>(u), std::max(g.n[d] - 2, 0));
-        t[d] = g.n[d] > 1 ? u - base[d] : 0.0;
-      }
-      double flow = 0;
-      for (int k = 0; k < NS; ++k) {
-        std::array<int, 3> ijk{0, 0, 0};
-        double wk = 1;
-        for (int d = 0; d < DIM; ++d) {
-          const int bit = (k >> d) & 1;
-          ijk[d] = std::min(base[d] + bit, g.n[d] - 1);
-          wk *= bit ? t[d] : 1.0 - t[d];
-        }
-        cells[k] = g.index(ijk[0], ijk[1], ijk[2]);
-        w[k] = kind.empty() || is_flow_cell(kind[cells[k]]) ? wk : 0.0;
-        flow += w[k];
-      }
-      if (flow < opt.min_flow_weight) continue;
-      found = true;
-      sim.cell_states(cells.data(), NS, states.data());
+      if (!inside(x)) break;  // left the fluid domain: not wetted
+      if (!evaluate(x, n, vals)) continue;
+      // Pressure at the wall: linear extrapolation from the points s1 and s1 + h out (an accelerating gas has a
+      // pressure gradient rho a next to the wall; the point value alone would be first order in h).
+      const bool second = opt.extrapolate_pressure && inside(x2) && evaluate(x2, n, far);
       for (int k = 0; k < np; ++k) {
-        double a = 0, rho = 0, un = 0, p = 0, cs = 0;
-        for (int q = 0; q < NS; ++q) {
-          if (w[q] == 0) continue;
-          const CellSample& s = states[static_cast<std::size_t>(q) * np + k];
-          const double wq = w[q] / flow;
-          a += wq * s.alpha;
-          rho += wq * s.rho;
-          p += wq * s.p;
-          cs += wq * s.c;
-          for (int d = 0; d < DIM; ++d) un += wq * s.velocity[d] * n[d];
+        const Values& v = vals[static_cast<std::size_t>(k)];
+        double p = v.p;
+        if (second) {
+          const double pe = v.p + (s1 / h) * (v.p - far[static_cast<std::size_t>(k)].p);
+          // Only where the extrapolation stays between half and twice the point value (smooth flow).
+          if (pe > 0.5 * v.p && pe < 2.0 * v.p) p = pe;
         }
         const std::size_t i = static_cast<std::size_t>(f) * np + k;
-        out.alpha[i] = a;
-        out.rho[i] = rho;
-        out.normal_velocity[i] = un;
+        out.alpha[i] = v.a;
+        out.rho[i] = v.rho;
+        out.normal_velocity[i] = v.un;
         out.pressure[i] = p;
-        out.impedance[i] = rho * cs;
+        out.impedance[i] = v.rho * v.c;
       }
       out.wetted[f] = 1;
+      break;
     }
   }
   return out;
