@@ -449,3 +449,86 @@ fluid:
 
 }  // namespace
 }  // namespace cosim::fluid::test
+
+namespace cosim::fluid::test {
+namespace {
+
+// 3D piston convergence study: a slab moving at w = 0.4 along its normal into gas at rest, L1
+// error of the pressure against the exact piston pressure between the moving face and the shock
+// (4 cells at the shock excluded, as in 2D). deg = 0: a slab with its face normal to x on an
+// N x 4 x 4 grid (periodic in y and z, a 1D problem run by the 3D solver); deg = 30: the slab
+// rotated 30 degrees about z on an N x N x 4 grid (periodic in z), error within 0.3 along the
+// face of the domain's middle (the waves from where the face meets y = 0 and y = 1 stay outside).
+double piston_error_3d(int N, int order, double deg) {
+  const double w = 0.4, t_end = 0.15, th = deg * std::numbers::pi / 180.0;
+  const double nx = std::cos(th), ny = std::sin(th);  // the moving face's normal into the gas
+  const int ny_cells = deg > 0 ? N : 4;
+  const double ly = ny_cells / static_cast<double>(N), lz = 4.0 / N;
+  // deg = 0: face at x = kWallY0 (off the cell faces). deg = 30: the box of MovingPistonDiagonal3D,
+  // whose rotated +x face starts through (0.5, 0.5).
+  const double cx = deg > 0 ? -0.02 : kWallY0 - 0.6, cy = deg > 0 ? 0.2 : 0.5 * ly, half = 0.6;
+  char scene[2048];
+  std::snprintf(scene, sizeof(scene), R"(
+fluid:
+  mesh: {cells: [%d, %d, 4], lower: [0.0, 0.0, 0.0], upper: [1.0, %.17g, %.17g]}
+  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]
+  time: {end: %g}
+  boundaries: {%s z_lower: periodic, z_upper: periodic}
+  embedded:
+    bodies:
+      - {shape: box, lower: [%.17g, %.17g, -0.5], upper: [%.17g, %.17g, 0.6], velocity: [%.17g, %.17g, 0.0]}
+  initial:
+    state: {rho: 1.0, velocity: [0.0, 0.0, 0.0], p: 1.0}
+)",
+                N, ny_cells, ly, lz, t_end, deg > 0 ? "" : "y_lower: periodic, y_upper: periodic,", cx - half, cy - 1.0,
+                cx + half, cy + 1.0, w * nx, w * ny);
+  FluidScene s = parse_fluid_scene(scene, {"fluid.embedded.order=" + std::to_string(order)});
+  s.embedded.bodies[0].rotation_deg = deg;  // about z through the box centre
+  auto sim = make_simulation(s);
+  advance_to(*sim, s.t_end);
+  exact::RiemannSolution ex({1, 0, 1}, {1.4, 0}, {1, -2 * w, 1}, {1.4, 0});
+  const double shock = -ex.left_tail() * t_end, p_star = ex.star().p;
+  PhaseFields f = sim->phase_fields(0);
+  auto kind = categories(*sim);
+  double err = 0;
+  int n = 0;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < ny_cells; ++j)
+      for (int i = 0; i < N; ++i) {
+        const std::size_t c = (static_cast<std::size_t>(k) * ny_cells + j) * N + i;
+        if (kind[c] > 1) continue;
+        const double x = (i + 0.5) / N, y = (j + 0.5) / N;
+        const double dist = (x - cx) * nx + (y - cy) * ny - half;  // from the face's initial position
+        const double along = -(x - cx) * ny + (y - cy) * nx;       // 0 on the normal through the box centre
+        if ((deg > 0 && std::abs(along) > 0.3) || dist > shock - 4.0 / N) continue;
+        err += std::abs(f.p[c] - p_star);
+        ++n;
+      }
+  EXPECT_GT(n, 0);
+  return err / n;
+}
+
+TEST(EmbeddedFlow, MovingPiston3DConvergence) {
+  for (double deg : {0.0, 30.0}) {
+    const int Ns[2][3] = {{40, 80, 160}, {32, 64, 128}};
+    const int* N = Ns[deg > 0 ? 1 : 0];
+    double e[2][3];
+    for (int order = 1; order <= 2; ++order)
+      for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_error_3d(N[r], order, deg);
+    for (int order = 1; order <= 2; ++order)
+      std::printf(
+          "3D piston at %2.0f deg (N = %d, %d, %d), boundary order %d: L1(p) %.3e %.3e %.3e, orders %.2f %.2f\n", deg,
+          N[0], N[1], N[2], order, e[order - 1][0], e[order - 1][1], e[order - 1][2],
+          observed_order(e[order - 1][0], e[order - 1][1]), observed_order(e[order - 1][1], e[order - 1][2]));
+    // Both treatments converge. Order 2 < order 1 is not asserted: as in 2D, the d-weighted face
+    // states lose on the grid-aligned slab (the start-up shock leaving the wall: issue 4, open),
+    // and on the diagonal slab the two are within the noise of the face's staircase at 64 cells.
+    for (int order = 1; order <= 2; ++order) {
+      EXPECT_LT(e[order - 1][1], e[order - 1][0]) << deg << " order " << order;
+      EXPECT_LT(e[order - 1][2], 0.5 * e[order - 1][0]) << deg << " order " << order;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cosim::fluid::test
