@@ -207,9 +207,15 @@ Node Node::child_or_empty(const std::string& key) {
 }
 
 double coupled_end_time(Node& root) {
-  if (!root.has("coupling")) return 0.0;
-  Node c = root.child("coupling");
-  return c.child("time").require<double>("end", positive());
+  // The coupler validates its section; here only a usable end time counts.
+  const YAML::Node c = root.raw("coupling");
+  if (!c || !c.IsMap() || !c["time"] || !c["time"].IsMap() || !c["time"]["end"]) return 0.0;
+  try {
+    const double end = c["time"]["end"].as<double>();
+    return end > 0 ? end : 0.0;
+  } catch (const YAML::Exception&) {
+    return 0.0;
+  }
 }
 
 std::vector<Node> Node::list(const std::string& key) {

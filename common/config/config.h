@@ -84,6 +84,9 @@ class Node {
   std::string where(const std::string& key = "") const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
 
+  // The raw YAML of a key (null when missing), for lenient reads of another reader's section.
+  YAML::Node raw(const std::string& key) const { return at(key); }
+
  private:
   YAML::Node at(const std::string& key) const;
   std::string key_path(const std::string& key) const;
