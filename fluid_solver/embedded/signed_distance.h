@@ -66,11 +66,21 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
       }
     const Vec3& n = topo.face_normal[f];
     for_each_in_slab(L, lo, hi, grow, n, dot(n, s.vertices[static_cast<std::size_t>(fc[0])]), band_width, [&](int I, int J, int K) {
-      ++tests;
       const std::size_t idx = L.index(I, J, K);
-      const ClosestPoint cp = closest_on_face(s, static_cast<int>(f), L.point(I, J, K));
+      const Vec3 x = L.point(I, J, K);
       const int sl = ls.slot[idx];
-      if (cp.d2 >= (sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2)) return;
+      const double best = sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2;
+      // The distance to the face's bounding box bounds the distance to the face from below: a point
+      // already closer to another face (or outside the band) needs no exact test.
+      double lb = 0;
+      for (std::size_t d = 0; d < 3; ++d) {
+        const double out = std::max({lo[d] - x[d], 0.0, x[d] - hi[d]});
+        lb += out * out;
+      }
+      if (lb >= best) return;
+      ++tests;
+      const ClosestPoint cp = closest_on_face(s, static_cast<int>(f), x);
+      if (cp.d2 >= best) return;
       if (sl < 0) {
         ls.slot[idx] = static_cast<int>(ls.band.size());
         ls.band.push_back(BandPoint{idx, static_cast<int>(f), {}, {}, {}, cp.d2});
