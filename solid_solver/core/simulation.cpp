@@ -1,5 +1,7 @@
 #include "solid_solver/core/simulation.h"
 
+#include <Eigen/Dense>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -279,55 +281,62 @@ void Simulation::set_face_normal_velocities(const std::vector<double>& u, const 
                                             "faces",
                                             u.size(), wetted.size(), faces_.count));
   const int D = mesh_.dim, k = faces_.nodes_per_face;
-  std::vector<double> a(mesh_.num_nodes, 0.0), au(mesh_.num_nodes, 0.0), an(static_cast<std::size_t>(mesh_.num_nodes) * D, 0.0);
+  // Per node, the area-weighted normal equations of "v . n_f = u_f on every wetted face f":
+  // N = sum A n n^T, c = sum A u n.
+  std::vector<Eigen::Matrix3d> N(mesh_.num_nodes, Eigen::Matrix3d::Zero());
+  std::vector<Eigen::Vector3d> c(mesh_.num_nodes, Eigen::Vector3d::Zero());
+  std::vector<char> touched(mesh_.num_nodes, 0);
   for (int f = 0; f < faces_.count; ++f) {
     if (!wetted[f]) continue;
+    Eigen::Vector3d nf = Eigen::Vector3d::Zero();
+    for (int d = 0; d < D; ++d) nf[d] = faces_.normal[static_cast<std::size_t>(f) * D + d];
     const double A = faces_.area[f];
     for (int q = 0; q < k; ++q) {
       const int n = faces_.nodes[static_cast<std::size_t>(f) * k + q];
-      a[n] += A;
-      au[n] += A * u[f];
-      for (int d = 0; d < D; ++d) an[static_cast<std::size_t>(n) * D + d] += A * faces_.normal[static_cast<std::size_t>(f) * D + d];
+      N[n] += A * nf * nf.transpose();
+      c[n] += A * u[f] * nf;
+      touched[n] = 1;
     }
   }
-  iface_nodes_.clear();
-  iface_u_.clear();
-  iface_n_.clear();
+  iface_.clear();
   for (int n = 0; n < mesh_.num_nodes; ++n) {
-    if (a[n] <= 0 || (st_.bc_mask[n] & kBcRigid)) continue;
-    double l = 0;
-    for (int d = 0; d < D; ++d) l += an[static_cast<std::size_t>(n) * D + d] * an[static_cast<std::size_t>(n) * D + d];
-    l = std::sqrt(l);
-    if (!(l > 0)) continue;
-    iface_nodes_.push_back(n);
-    iface_u_.push_back(au[n] / a[n]);
-    for (int d = 0; d < D; ++d) iface_n_.push_back(an[static_cast<std::size_t>(n) * D + d] / l);
+    if (!touched[n] || (st_.bc_mask[n] & kBcRigid)) continue;
+    // Pseudo-inverse over the directions the faces constrain (eigenvalues above 5% of the largest: faces
+    // that are nearly parallel constrain one direction, not two). A node of one flat face gets u along n;
+    // a corner gets the velocity that meets every face's condition; tangential directions stay free.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(N[n]);
+    const double top = es.eigenvalues().maxCoeff();
+    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 3; ++i)
+      if (es.eigenvalues()[i] > 0.05 * top)
+        P += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / es.eigenvalues()[i];
+    iface_.push_back({n, N[n], c[n], P});
   }
 }
 
 void Simulation::apply_interface_velocities() {
   const int D = mesh_.dim;
   double wb = 0;
-  for (std::size_t i = 0; i < iface_nodes_.size(); ++i) {
-    const int n = iface_nodes_[i];
-    double* v = &st_.v[static_cast<std::size_t>(n) * D];
-    const double* nn = &iface_n_[i * D];
-    double vn = 0, e_old = 0, e_new = 0;
-    for (int d = 0; d < D; ++d) vn += v[d] * nn[d];
+  for (const InterfaceNode& in : iface_) {
+    double* v = &st_.v[static_cast<std::size_t>(in.node) * D];
+    Eigen::Vector3d vv = Eigen::Vector3d::Zero();
+    for (int d = 0; d < D; ++d) vv[d] = v[d];
+    const Eigen::Vector3d dv = in.pinv * (in.c - in.N * vv);  // least-squares correction in the constrained directions
+    double e_old = 0, e_new = 0;
     for (int d = 0; d < D; ++d) {
       e_old += v[d] * v[d];
-      if (!(st_.bc_mask[n] & (1u << d))) v[d] += (iface_u_[i] - vn) * nn[d];
+      if (!(st_.bc_mask[in.node] & (1u << d))) v[d] += dv[d];
       e_new += v[d] * v[d];
     }
-    wb += 0.5 * st_.mass[n] * (e_new - e_old);
+    wb += 0.5 * st_.mass[in.node] * (e_new - e_old);
   }
   wb_ += wb;
   ke_ += wb;
-  iface_nodes_.clear();
+  iface_.clear();
 }
 
 void Simulation::nodal_update(double dt) {
-  if (!iface_nodes_.empty()) apply_interface_velocities();
+  if (!iface_.empty()) apply_interface_velocities();
   if (!loads_.empty() || !face_p_.empty()) apply_pressure_loads();
   const int D = mesh_.dim;
   const int nn = mesh_.num_nodes;

@@ -5,6 +5,8 @@
 //   element_update(dt): compatible energy, stress, EOS, viscosity, new corner forces, stable step
 #pragma once
 
+#include <Eigen/Dense>
+
 #include <string>
 #include <vector>
 
@@ -54,9 +56,10 @@ class Simulation {
   void set_face_pressures(const std::vector<double>& p);
   // Interface normal velocity per exterior face (the coupler's u_I, paper eq. 22, applied with the pressure
   // as the interface condition of paper section 8, step 1) for the faces marked in `wetted`: at the start
-  // of the next cycle each deformable node of a wetted face gets the area-weighted mean u_I of its wetted
-  // faces as its velocity along their mean normal (rigid-block and fixed components are left alone). The
-  // kinetic-energy change is counted as boundary work. Used once, then cleared.
+  // of the next cycle each deformable node of wetted faces gets the velocity that meets v . n_f = u_f on
+  // its wetted faces in the least-squares sense (area-weighted; only the directions the faces constrain
+  // change: a flat face sets the normal component, a corner the whole vector). Rigid-block nodes and fixed
+  // components are left alone. The kinetic-energy change is counted as boundary work. Used once.
   void set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted);
   // Rigid blocks (blocks[].rigid), in block order.
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_; }
@@ -83,8 +86,13 @@ class Simulation {
   BoundaryFaces faces_;
   bool faces_built_ = false;
   void apply_interface_velocities();
-  std::vector<int> iface_nodes_;          // nodes with an interface velocity for the next cycle
-  std::vector<double> iface_u_, iface_n_;  // their u_I [m/s] and unit normal (dim per node)
+  struct InterfaceNode {  // a node with an interface velocity for the next cycle
+    int node;
+    Eigen::Matrix3d N;     // sum over its wetted faces of A n n^T
+    Eigen::Vector3d c;     // sum of A u_I n
+    Eigen::Matrix3d pinv;  // pseudo-inverse of N over the constrained directions
+  };
+  std::vector<InterfaceNode> iface_;
   std::vector<double> face_p_;  // coupler pressures per exterior face [Pa] (empty: none)
   double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
