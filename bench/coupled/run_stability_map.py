@@ -53,7 +53,7 @@ RATIOS = [1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3]
 CFLS = [0.1, 0.3, 0.5, 0.7, 0.9]
 QUICK_RATIOS = [1e-3, 1.0, 1e3]
 QUICK_CFLS = [0.1, 0.5, 0.9]
-MODES = ["impedance", "standard"]
+MODES = ["impedance", "standard", "characteristic"]  # characteristic: eqs. 17 and 19 with the last terms kept
 SCENES = {
     "piston": {
         "file": ROOT / "configs" / "piston_light_2d.yaml",
@@ -245,7 +245,7 @@ def plot(rows, ratios, cfls, path):
     from matplotlib.patches import Patch
 
     by = {(r["scene"], r["mode"], r["ratio"], r["cfl"]): r for r in rows}
-    fig, axes = plt.subplots(len(SCENES), len(MODES), figsize=(10, 9), squeeze=False)
+    fig, axes = plt.subplots(len(SCENES), len(MODES), figsize=(14, 9), squeeze=False)
     for i, scene in enumerate(SCENES):
         for j, mode in enumerate(MODES):
             ax = axes[i][j]
