@@ -88,10 +88,25 @@ int run(const LaunchOptions& opt) {
   // Scene: must parse; the solid: section decides between a coupled and a fluid-only run.
   bool coupled = false;
   std::string name;
+  LaunchOptions eff = opt;  // with the scene's launcher: commands where the command line gives none
   try {
     config::Node root = config::load_file(opt.scene, opt.overrides);
     coupled = root.has("solid");
     name = root.get<std::string>("name", fs::path(opt.scene).stem().string());
+    // launcher: {fluid: CMD, solid: CMD, coupler: CMD}: the programs of this scene (e.g. a solid written in
+    // Python); {bin} is the directory of cosim, {python} the build's python directory.
+    if (auto l = root.optional_child("launcher")) {
+      const auto expand = [&](std::string c) {
+        for (const auto& [key, value] : {std::pair<std::string, std::string>{"{bin}", opt.bin_dir.string()},
+                                         {"{python}", (opt.bin_dir.parent_path() / "python").string()}})
+          for (std::size_t at; (at = c.find(key)) != std::string::npos;) c.replace(at, key.size(), value);
+        return c;
+      };
+      if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(l->get<std::string>("fluid", ""));
+      if (eff.solid_cmd.empty()) eff.solid_cmd = expand(l->get<std::string>("solid", ""));
+      if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(l->get<std::string>("coupler", ""));
+      l->finish();
+    }
     if (!root.has("fluid")) root.fail("fluid", "a fluid: section (every run has a fluid)");
   } catch (const std::exception& e) {
     std::cerr << "cosim: " << e.what() << "\n";
@@ -136,10 +151,10 @@ int run(const LaunchOptions& opt) {
   };
   std::vector<Child> children;
   if (coupled)
-    children.push_back({"coupler", with_common(command(opt.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
-  children.push_back({"fluid", with_common(command(opt.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
+    children.push_back({"coupler", with_common(command(eff.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
+  children.push_back({"fluid", with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
   if (coupled)
-    children.push_back({"solid", with_common(command(opt.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
+    children.push_back({"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
 
   nlohmann::json launch;
   launch["endpoint"] = coupled ? endpoint : "";

@@ -2,7 +2,7 @@
 """A rigid-piston solid in Python speaking the cosim coupling protocol (a swappable replacement of solid_solver).
 
     rigid_piston.py SCENE --out DIR --coupler ENDPOINT --token T [--set k=v ...]
-                    [--mass KG] [--area M2] [--left X] [--right X] [--v0 M/S] [--dim 2|3]
+                    [--mass KG] [--area M2] [--left X] [--right X] [--v0 M/S] [--dim 1|2|3]
 
 The closed boundary of a rigid slab [left, right] x (transverse box) moving along x: 4 segments (2D) or 6 quads
 (3D) with their vertices, so a real fluid_solver can embed it. Newton's law under the interface pressures of
@@ -39,10 +39,12 @@ def defaults_from_scene(path):
         return None
 
 
-def box_faces(dim, x0, x1, lower, upper, v):
+def box_faces(dim, x0, x1, lower, upper, v, cross_section=1.0):
     """The closed boundary of the slab [x0, x1] x [lower, upper] (2D: 4 segments, 3D: 6 quads), outward normals,
     vertices and the rigid velocity (v, 0, 0); impedance +inf (rigid), no stress."""
-    if dim == 2:
+    if dim == 1:  # two points; their "area" is the cross-section (1 m^2 unless --area)
+        verts, faces, normals = [(x0,), (x1,)], [(0,), (1,)], [(-1,), (1,)]
+    elif dim == 2:
         (y0,), (y1,) = lower, upper
         verts = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
         faces = [(3, 0), (1, 2), (0, 1), (2, 3)]  # -x, +x, -y, +y
@@ -60,7 +62,7 @@ def box_faces(dim, x0, x1, lower, upper, v):
         for d in range(dim):
             if n[d] == 0:
                 size *= max(p[d] for p in pts) - min(p[d] for p in pts)
-        area.append(size)
+        area.append(size if dim > 1 else cross_section)
     return {
         "dim": dim, "centre": centre, "normal": [c for n in normals for c in n], "area": area,
         "velocity": ([v] + [0.0] * (dim - 1)) * len(faces),
@@ -82,7 +84,7 @@ def main():
     ap.add_argument("--left", type=float)
     ap.add_argument("--right", type=float)
     ap.add_argument("--v0", type=float, default=0.0)
-    ap.add_argument("--dim", type=int, default=2, choices=(2, 3))
+    ap.add_argument("--dim", type=int, default=2, choices=(1, 2, 3))
     ap.add_argument("--dt", type=float, default=1.0, help="largest step proposed [s]")
     a = ap.parse_args()
     d = defaults_from_scene(a.scene) or (1.0, 1.0, -0.5, 0.5, [0.0] * (a.dim - 1), [1.0] * (a.dim - 1))
@@ -94,7 +96,7 @@ def main():
         a.dim = len(lower) + 1  # the scene's solid mesh decides
     if a.area and len(lower) == a.dim - 1 and a.dim == 2:
         lower, upper = [0.0], [a.area]  # a given cross-section: height = area (x 1 m)
-    faces0 = box_faces(a.dim, left, right, lower, upper, 0.0)
+    faces0 = box_faces(a.dim, left, right, lower, upper, 0.0, area)
     areas = faces0["area"]
     normals = [faces0["normal"][i * a.dim:(i + 1) * a.dim] for i in range(len(areas))]
     x, v, force = 0.0, a.v0, 0.0
@@ -122,7 +124,7 @@ def main():
             force = sum(-pf * af * nf[0] for pf, af, nf in zip(p, areas, normals))
             v += dt * force / m
             x += dt * v
-            c.send_faces(box_faces(a.dim, left + x, right + x, lower, upper, v))
+            c.send_faces(box_faces(a.dim, left + x, right + x, lower, upper, v, area))
             st = c.receive_states()
             p = list(st.face_pressure)
             c.propose_dt(a.dt)

@@ -137,7 +137,7 @@ std::string first(std::initializer_list<std::string> errors) {
 }
 
 std::string validate_faces(const pb::InterfaceFaces& m) {
-  if (m.dim() != 2 && m.dim() != 3) return fmt::format("InterfaceFaces.dim: {}, expected 2 or 3", m.dim());
+  if (m.dim() < 1 || m.dim() > 3) return fmt::format("InterfaceFaces.dim: {}, expected 1, 2 or 3", m.dim());
   const long n = m.count(), d = m.dim();
   std::string e = first({size_check("InterfaceFaces", "centre", m.centre_size(), n * d, "dim * count"),
                          size_check("InterfaceFaces", "normal", m.normal_size(), n * d, "dim * count"),

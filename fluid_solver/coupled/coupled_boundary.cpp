@@ -81,11 +81,10 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
 
 std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim) {
   switch (sim.scene().dim) {
+    case 1: return std::make_unique<CoupledBoundaryImpl<1>>(sim);
     case 2: return std::make_unique<CoupledBoundaryImpl<2>>(sim);
     case 3: return std::make_unique<CoupledBoundaryImpl<3>>(sim);
-    default:
-      throw std::invalid_argument(
-          fmt::format("coupled runs need a 2D or 3D fluid grid (this scene is {}D)", sim.scene().dim));
+    default: throw std::invalid_argument(fmt::format("a fluid grid of dimension {}", sim.scene().dim));
   }
 }
 

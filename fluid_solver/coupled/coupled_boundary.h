@@ -26,7 +26,7 @@ class CoupledBoundary {
   virtual double geometry_seconds() const = 0;  // total spent in the geometry [s]
 };
 
-// For a 2D or 3D simulation (throws std::invalid_argument for 1D).
+// For a 1D, 2D or 3D simulation.
 std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim);
 
 }  // namespace cosim::fluid::coupled

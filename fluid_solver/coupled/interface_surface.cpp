@@ -19,14 +19,15 @@ void check_size(const char* field, std::size_t got, std::size_t want) {
 }  // namespace
 
 InterfaceSurface surface_from_faces(const coupling::Faces& f, int dim, double back_dt) {
-  if (dim != 2 && dim != 3)
-    throw std::invalid_argument(fmt::format("a {}D fluid grid cannot take solid faces (2D or 3D only)", dim));
+  if (dim < 1 || dim > 3) throw std::invalid_argument(fmt::format("a {}D fluid grid cannot take faces", dim));
   if (f.dim != dim)
     throw std::invalid_argument(fmt::format("InterfaceFaces.dim = {} but the fluid grid is {}D", f.dim, dim));
   const int npf = f.nodes_per_face;
-  if ((dim == 2 && npf != 2) || (dim == 3 && npf != 3 && npf != 4))
+  if ((dim == 1 && npf != 1) || (dim == 2 && npf != 2) || (dim == 3 && npf != 3 && npf != 4))
     throw std::invalid_argument(fmt::format("InterfaceFaces.nodes_per_face = {}, expected {}", npf,
-                                            dim == 2 ? "2 (segments)" : "3 or 4 (triangles or quads)"));
+                                            dim == 1   ? "1 (points)"
+                                            : dim == 2 ? "2 (segments)"
+                                                       : "3 or 4 (triangles or quads)"));
   const auto n = static_cast<std::size_t>(f.count), d = static_cast<std::size_t>(dim);
   check_size("centre", f.centre.size(), n * d);
   check_size("normal", f.normal.size(), n * d);
@@ -75,6 +76,11 @@ InterfaceSurface surface_from_faces(const coupling::Faces& f, int dim, double ba
     for (std::size_t c = 0; c < d; ++c) nrm[c] = f.normal[i * d + c];
     std::array<int, 4> q{-1, -1, -1, -1};
     for (int k = 0; k < npf; ++k) q[k] = static_cast<int>(f.face_vertex[i * npf + k]);
+    if (dim == 1) {  // a point with outward normal sign(n_x) e_x
+      s.faces.push_back({q[0], nrm[0] >= 0 ? 1 : -1, -1});
+      out.source_face.push_back(static_cast<int>(i));
+      continue;
+    }
     if (dim == 2) {
       s.faces.push_back({q[0], q[1], -1});
       if (embedded::dot(embedded::face_normal(s, static_cast<int>(s.faces.size()) - 1), nrm) < 0)

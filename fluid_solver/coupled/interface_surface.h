@@ -16,8 +16,8 @@ struct InterfaceSurface {
   std::vector<int> source_face;  // the coupler face of each Surface face (3D quads become two triangles)
 };
 
-// Builds the Surface of `faces` for a fluid grid of dimension `dim` (2 or 3; the faces must have the same
-// dimension and carry vertex data). Vertex velocities are the area-weighted means of the adjacent faces'
+// Builds the Surface of `faces` for a fluid grid of dimension `dim` (1, 2 or 3; the faces must have the same
+// dimension and carry vertex data: points, segments, triangles or quads). Vertex velocities are the area-weighted means of the adjacent faces'
 // velocities (exact for rigid motion). The vertices are moved back by `back_dt` times their velocity:
 // the solid has already advanced to t^{n+1}, the fluid state is at t^n, and the body is placed where it
 // was at t^n (the same explicit placement as prescribed motion). Face orientation follows the faces'

@@ -201,3 +201,17 @@ TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
   EXPECT_GT(travel, 0.3);
   EXPECT_LT(worst, 0.1 * travel);
 }
+
+// The 1D equivalent (configs/piston_1d.yaml): a 1D fluid grid whose embedded boundary is the two end points
+// sent by the Python rigid piston (the scene's launcher: solid program), against the same references.
+TEST(CoupledPiston, Piston1DWithThePythonPiston) {
+  const fs::path& dir = run_once("piston_1d");
+  const History h = read_history(dir);
+  ASSERT_GT(h.size(), 1000u);
+  EXPECT_NEAR(h.t.back(), 0.37, 1e-12);
+  const Deviation d = piston_deviation(h, 0.37);
+  print("piston_1d (impedance, boundary order 2, 160 cells)", d);
+  EXPECT_LT(d.plain, 0.05);
+  EXPECT_LT(d.inertia, 0.005);
+  EXPECT_LT(d.conforming, 0.005);
+}
