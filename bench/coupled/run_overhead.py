@@ -46,8 +46,8 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[2]
-RESULTS = ROOT / "bench" / "results"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_common import RESULTS, ROOT, provenance  # noqa: E402
 EXCHANGES = 4  # per cycle, as the issue counts them
 SCENES = {
     # name: (scene file, interface faces of the solid box = 2 (nx + ny), --set for --quick)
@@ -226,21 +226,6 @@ def perf_part(a, work, cosim, bindir, t_start):
         print(f"\ntotal benchmark time {time.perf_counter() - t_start:.0f} s; load average after: "
               f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     return 0
-
-
-def provenance(bin_dir):
-    """One line: git HEAD of the tree (read-only query) and the modification time of the binaries used."""
-    try:
-        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], stdout=subprocess.PIPE,
-                              stderr=subprocess.DEVNULL, text=True).stdout.strip()
-    except OSError:
-        head = "?"
-    stamps = []
-    for exe in ("coupler", "fluid_solver", "solid_solver"):
-        p = Path(bin_dir) / exe
-        if p.exists():
-            stamps.append(f"{exe} {time.strftime('%Y-%m-%d %H:%M:%S', time.localtime(p.stat().st_mtime))}")
-    return f"git HEAD {head or '?'}; binaries built: " + ", ".join(stamps)
 
 
 def main():

@@ -47,8 +47,8 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[2]
-RESULTS = ROOT / "bench" / "results"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_common import RESULTS, ROOT, provenance  # noqa: E402
 RATIOS = [1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3]
 CFLS = [0.1, 0.3, 0.5, 0.7, 0.9]
 QUICK_RATIOS = [1e-3, 1.0, 1e3]
@@ -277,21 +277,6 @@ def plot(rows, ratios, cfls, path):
                  f"threshold {ADV_TOL:g})", fontsize=10)
     fig.tight_layout(rect=(0, 0.05, 1, 0.97))
     fig.savefig(path, dpi=110)
-
-
-def provenance(bin_dir):
-    """One line: git HEAD of the tree (read-only query) and the modification time of the binaries used."""
-    try:
-        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], stdout=subprocess.PIPE,
-                              stderr=subprocess.DEVNULL, text=True).stdout.strip()
-    except OSError:
-        head = "?"
-    stamps = []
-    for exe in ("coupler", "fluid_solver", "solid_solver"):
-        p = Path(bin_dir) / exe
-        if p.exists():
-            stamps.append(f"{exe} {time.strftime('%Y-%m-%d %H:%M:%S', time.localtime(p.stat().st_mtime))}")
-    return f"git HEAD {head or '?'}; binaries built: " + ", ".join(stamps)
 
 
 def main():

@@ -13,10 +13,34 @@
 #include <stdexcept>
 #include <string>
 
+#include <memory>
+#include <vector>
+
 #include "common/app/run_driver.h"
+#include "common/app/run_options.h"
 #include "common/coupling/client.h"
+#include "common/coupling/scene_hash.h"
 
 namespace cosim::coupling {
+
+// Connects the solver of a coupled run (opt.coupler, opt.token) to its coupler: handshake with the scene hash
+// of the same file and overrides. Logs and returns null when that fails (the caller exits with 5).
+inline std::unique_ptr<Client> connect_solver(const app::RunOptions& opt, Role role, const std::string& program,
+                                              std::vector<std::string> phase_names = {}) {
+  ClientOptions co;
+  co.endpoint = opt.coupler;
+  co.token = opt.token;
+  co.role = role;
+  co.program = program;
+  co.phase_names = std::move(phase_names);
+  try {
+    co.scene_hash = scene_hash(opt.scene_file, opt.overrides);
+    return std::make_unique<Client>(co);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return nullptr;
+  }
+}
 
 struct SolverLoopResult {
   std::string status = "completed";  // completed | failed | interrupted

@@ -37,20 +37,11 @@ int run_fluid_coupled(const RunOptions& opt) {
   }
   app::install_interrupt_handlers();
 
-  coupling::ClientOptions co;
-  co.endpoint = opt.coupler;
-  co.token = opt.token;
-  co.role = coupling::Role::Fluid;
-  co.program = "fluid_solver";
-  for (const auto& ph : scene.phases) co.phase_names.push_back(ph.name);
-  std::unique_ptr<coupling::Client> client;
-  try {
-    co.scene_hash = coupling::scene_hash(opt.scene_file, opt.overrides);
-    client = std::make_unique<coupling::Client>(co);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 5;
-  }
+  std::vector<std::string> phase_names;
+  for (const auto& ph : scene.phases) phase_names.push_back(ph.name);
+  std::unique_ptr<coupling::Client> client =
+      coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phase_names));
+  if (!client) return 5;
   spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,
                sim->interior_cells(), scene.num_phases(), opt.coupler, coupling::mode_name(client->mode()));
 

@@ -19,35 +19,13 @@
 namespace cosim::solid {
 
 int run_solid_coupled(const RunOptions& opt) {
-  auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
-  if (!loaded) return 2;
-  SolidScene scene = std::move(*loaded);
-  if (scene.threads > 0) omp_set_num_threads(scene.threads);
-  if (!app::make_output_directory(opt.out_dir)) return 4;
-  std::unique_ptr<Simulation> sim;
-  try {
-    sim = std::make_unique<Simulation>(scene);
-  } catch (const StateError& e) {
-    spdlog::error("{}: {}", opt.scene_file, e.what());
-    return 3;
-  } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
-    return 2;
-  }
+  SolidRun run = prepare_solid_run(opt);
+  if (!run.sim) return run.exit_code;
+  const SolidScene& scene = run.scene;
+  std::unique_ptr<Simulation>& sim = run.sim;
   app::install_interrupt_handlers();
-  coupling::ClientOptions co;
-  co.endpoint = opt.coupler;
-  co.token = opt.token;
-  co.role = coupling::Role::Solid;
-  co.program = "solid_solver";
-  std::unique_ptr<coupling::Client> client;
-  try {
-    co.scene_hash = coupling::scene_hash(opt.scene_file, opt.overrides);
-    client = std::make_unique<coupling::Client>(co);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 5;
-  }
+  std::unique_ptr<coupling::Client> client = coupling::connect_solver(opt, coupling::Role::Solid, "solid_solver");
+  if (!client) return 5;
   const InterfaceFaceMap map = make_interface_face_map(sim->boundary_faces());
   spdlog::info("{}: {}D, {} elements, {} interface faces, coupled through {}", scene.name, scene.dim,
                sim->mesh().num_elements, sim->boundary_faces().count, opt.coupler);

@@ -53,23 +53,33 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 
-int run_solid(const RunOptions& opt) {
-  if (opt.coupled()) return run_solid_coupled(opt);
+SolidRun prepare_solid_run(const RunOptions& opt) {
+  SolidRun r;
   auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
-  if (!loaded) return 2;
-  SolidScene scene = std::move(*loaded);
-  if (scene.threads > 0) omp_set_num_threads(scene.threads);
-  if (!app::make_output_directory(opt.out_dir)) return 4;
-  std::unique_ptr<Simulation> sim;
+  if (!loaded) return r;
+  r.scene = std::move(*loaded);
+  if (r.scene.threads > 0) omp_set_num_threads(r.scene.threads);
+  if (!app::make_output_directory(opt.out_dir)) {
+    r.exit_code = 4;
+    return r;
+  }
   try {
-    sim = std::make_unique<Simulation>(scene);
+    r.sim = std::make_unique<Simulation>(r.scene);
   } catch (const StateError& e) {
     spdlog::error("{}: {}", opt.scene_file, e.what());
-    return 3;
+    r.exit_code = 3;
   } catch (const std::exception& e) {
     spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
-    return 2;
   }
+  return r;
+}
+
+int run_solid(const RunOptions& opt) {
+  if (opt.coupled()) return run_solid_coupled(opt);
+  SolidRun run = prepare_solid_run(opt);
+  if (!run.sim) return run.exit_code;
+  const SolidScene& scene = run.scene;
+  std::unique_ptr<Simulation>& sim = run.sim;
   spdlog::info("{}: {}D, {} elements, {} nodes, {} block(s), {} thread(s)", scene.name, scene.dim,
                sim->mesh().num_elements, sim->mesh().num_nodes, scene.blocks.size(), omp_get_max_threads());
 

@@ -1,7 +1,10 @@
 // The standalone solid run: scene -> snapshots at the output times -> summary.json.
 #pragma once
 
+#include <memory>
+
 #include "common/app/run_options.h"
+#include "solid_solver/core/simulation.h"
 
 namespace cosim::solid {
 
@@ -11,5 +14,14 @@ using app::RunOptions;
 // With opt.coupler set, run_solid is the coupled run (coupled_runner.cpp; exit code 5: coupling failure).
 int run_solid(const RunOptions& opt);
 int run_solid_coupled(const RunOptions& opt);
+
+// The first steps of every solid run: scene, threads, output directory, simulation. On failure (logged)
+// sim is null and exit_code says why (2 bad input, 3 numerical failure, 4 I/O).
+struct SolidRun {
+  SolidScene scene;
+  std::unique_ptr<Simulation> sim;
+  int exit_code = 2;
+};
+SolidRun prepare_solid_run(const RunOptions& opt);
 
 }  // namespace cosim::solid

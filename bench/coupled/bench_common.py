@@ -1,0 +1,22 @@
+"""What the coupled benchmark scripts share: the repository paths and the provenance line of a run."""
+import subprocess
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+RESULTS = ROOT / "bench" / "results"
+
+
+def provenance(bin_dir):
+    """One line: git HEAD of the tree (read-only query) and the modification time of the binaries used."""
+    try:
+        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, text=True).stdout.strip()
+    except OSError:
+        head = "?"
+    stamps = []
+    for exe in ("coupler", "fluid_solver", "solid_solver"):
+        p = Path(bin_dir) / exe
+        if p.exists():
+            stamps.append(f"{exe} {time.strftime('%Y-%m-%d %H:%M:%S', time.localtime(p.stat().st_mtime))}")
+    return f"git HEAD {head or '?'}; binaries built: " + ", ".join(stamps)
