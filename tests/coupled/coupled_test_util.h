@@ -83,6 +83,20 @@ inline History read_history(const fs::path& dir) {
   return h;
 }
 
+// How far run b's structure moved from run a's: the largest difference of the displacements (centre_x minus
+// its start) at b's times, and b's largest displacement.
+struct TrajectoryDifference {
+  double worst = 0, travel = 0;  // [m]
+};
+inline TrajectoryDifference trajectory_difference(const History& a, const History& b) {
+  TrajectoryDifference d;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    d.worst = std::max(d.worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
+    d.travel = std::max(d.travel, std::abs(b.cx[i] - b.cx[0]));
+  }
+  return d;
+}
+
 // Total variation of a series divided by its range: about 2 per half-oscillation of a smooth signal,
 // large when it rings.
 inline double relative_total_variation(const std::vector<double>& v) {

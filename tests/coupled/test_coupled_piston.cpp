@@ -136,8 +136,7 @@ TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
   const History a = read_history(cpp), b = read_history(py);
   ASSERT_GT(b.size(), 1000u);
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
-  double worst = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) worst = std::max(worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
+  const double worst = trajectory_difference(a, b).worst;
   std::printf("[ measured ] Python piston vs solid_solver: max |dx| = %.3e m over %zu cycles\n", worst, b.size());
   EXPECT_LT(worst, 0.005 * 0.7177);  // 0.5% of the amplitude (the step sequences differ slightly)
   EXPECT_TRUE(fs::exists(py / "solid" / "piston.csv"));
@@ -151,11 +150,7 @@ TEST(CoupledPiston, Piston3DMatchesThe2DRun) {
   const fs::path& d2 = run_once("piston_2d", end + " --set fluid.mesh.cells=[40,8]");
   const History a = read_history(d2), b = read_history(d3);
   ASSERT_GT(b.size(), 100u);
-  double worst = 0, travel = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    worst = std::max(worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
-    travel = std::max(travel, std::abs(b.cx[i] - b.cx[0]));
-  }
+  const auto [worst, travel] = trajectory_difference(a, b);
   std::printf("[ measured ] 3D vs 2D piston over 30 ms: max |dx| = %.3e m of %.3f m travel\n", worst, travel);
   EXPECT_GT(travel, 0.3);
   EXPECT_LT(worst, 0.01 * travel);
@@ -190,11 +185,7 @@ TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
   const fs::path& plain = run_once("piston_light_2d", end);
   const fs::path& sub = run_once("piston_light_2d", end + " --set solid.numerics.max_subcycles=10");
   const History a = read_history(plain), b = read_history(sub);
-  double worst = 0, travel = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    worst = std::max(worst, std::abs((b.cx[i] - b.cx[0]) - (a.cx_at(b.t[i]) - a.cx[0])));
-    travel = std::max(travel, std::abs(b.cx[i] - b.cx[0]));
-  }
+  const auto [worst, travel] = trajectory_difference(a, b);
   std::printf("[ measured ] sub-cycling: %zu coupled cycles instead of %zu, max |dx| = %.3e m of %.3f m travel\n",
               b.size(), a.size(), worst, travel);
   EXPECT_LT(b.size() * 3, a.size());
