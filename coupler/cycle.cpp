@@ -11,6 +11,7 @@
 #include "common/coupling/wire.h"
 #include "coupler/history.h"
 #include "coupler/interface_conditions.h"
+#include "coupler/pressure_predictor.h"
 
 namespace cosim::coupler {
 
@@ -49,41 +50,9 @@ struct Loop {
     hub.send(Role::Solid, e);
   }
 
-  // The solid applies this cycle's traction in its next step, from t^{n+1} = t + dt on, but the fluid
-  // sampled at t^n: a one-step lag that pumps energy into an oscillating structure (a delayed spring
-  // force grows the amplitude by exp(w^2 dt t / 2)). The fluid pressures are therefore extrapolated
-  // linearly to t^{n+1} from this and the previous cycle's samples (a second-order predictor, as in
-  // Farhat & Lesoinne's staggered schemes); unchanged where a face was not wetted both times or the
-  // extrapolation would not be positive.
   coupling::Faces last_faces;  // of the last cycle, for the interface snapshots
   coupling::InterfaceStates last_states;
-  std::vector<double> prev_pressure;
-  std::vector<char> prev_wetted;
-  double prev_time = 0;
-  bool have_prev = false;
-  void predict_pressures(coupling::FluidSamples& s, double t, double dt) {
-    const std::vector<double> p_now = s.pressure;
-    const std::vector<char> wet_now = s.wetted;
-    if (have_prev && t > prev_time && dt > 0 && prev_pressure.size() == s.pressure.size() &&
-        prev_wetted.size() == s.wetted.size()) {
-      const double r = dt / (t - prev_time);
-      for (int f = 0; f < s.count; ++f) {
-        const bool wet = s.wetted.empty() || s.wetted[f], was_wet = prev_wetted.empty() || prev_wetted[f];
-        if (!wet || !was_wet) continue;
-        for (int k = 0; k < s.phases; ++k) {
-          const std::size_t i = static_cast<std::size_t>(f) * s.phases + k;
-          const double p = s.pressure[i] + r * (s.pressure[i] - prev_pressure[i]);
-          if (p > 0) s.pressure[i] = p;
-        }
-      }
-    }
-    if (!have_prev || t > prev_time) {
-      prev_pressure = p_now;
-      prev_wetted = wet_now;
-      prev_time = t;
-      have_prev = true;
-    }
-  }
+  PressurePredictor predictor;
 
   // One cycle; returns the smallest proposal for the next one.
   double cycle(long n, double t, double dt) {
@@ -106,7 +75,7 @@ struct Loop {
     if (samples.count != faces.count)
       hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
                                           faces.count));
-    if (cfg.pressure_predictor) predict_pressures(samples, t, dt);
+    if (cfg.pressure_predictor) predictor.apply(samples, t, dt);
     const coupling::InterfaceStates st = interface_conditions(faces, samples, cfg.mode);
     pb::Envelope to_fluid = envelope(hub, n, t + dt);
     coupling::to_pb(st, *to_fluid.mutable_states());
@@ -186,7 +155,7 @@ struct Loop {
 RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir) {
   RunSummary s;
   try {
-    Loop loop{cfg, hub, History(out_dir), {}, {}, {}, {}, {}, 0.0, false};
+    Loop loop{cfg, hub, History(out_dir), {}, {}, {}, {}};
     try {
       loop.run();
       return loop.sum;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "coupler/interface_conditions.h"
+#include "coupler/pressure_predictor.h"
 
 using namespace cosim::coupler;
 using cosim::coupling::Faces;
@@ -131,4 +132,35 @@ TEST(InterfaceConditions, UnwettedFacesGetNoLoadAndCountsMustMatch) {
   EXPECT_EQ(st.normal_velocity[0], 3.0);
   s.count = 2;
   EXPECT_THROW(interface_conditions(face(1, 0, 0, 1), s, Mode::Impedance), std::invalid_argument);
+}
+
+// The coupler's pressure predictor (coupler/pressure_predictor.h): pressures linear in time reach t + dt
+// exactly; a face not wetted in both samples, a non-positive extrapolation and the first sample stay as they
+// are; a second sample at the same time (cycles 0 and 1) is no history.
+TEST(PressurePredictor, LinearInTimeIsExtrapolatedExactly) {
+  PressurePredictor pp;
+  const auto samples = [](double p0, double p1, char w1) {
+    FluidSamples s;
+    s.count = 2;
+    s.phases = 1;
+    s.pressure = {p0, p1};
+    s.wetted = {1, w1};
+    return s;
+  };
+  auto s = samples(1e5, 2e5, 1);
+  pp.apply(s, 0.0, 0.0);  // cycle 0: first sample, no change
+  EXPECT_EQ(s.pressure, (std::vector<double>{1e5, 2e5}));
+  s = samples(1e5, 2e5, 1);
+  pp.apply(s, 0.0, 1e-3);  // cycle 1: the same time again, no history yet
+  EXPECT_EQ(s.pressure, (std::vector<double>{1e5, 2e5}));
+  // t = 1e-3: p0 rises by 100 Pa per ms, p1 falls by 250 Pa per ms (face 1 now dry), next step 2e-3.
+  s = samples(1e5 + 100, 2e5 - 250, 0);
+  pp.apply(s, 1e-3, 2e-3);
+  EXPECT_NEAR(s.pressure[0], 1e5 + 300, 1e-9);  // p(t + dt) of the linear history
+  EXPECT_EQ(s.pressure[1], 2e5 - 250);          // not wetted now: as sampled
+  // A collapse that would extrapolate below zero keeps the sample.
+  s = samples(10.0, 2e5 - 500, 1);
+  pp.apply(s, 2e-3, 1e-3);
+  EXPECT_EQ(s.pressure[0], 10.0);
+  EXPECT_EQ(s.pressure[1], 2e5 - 500);  // was not wetted in the previous sample
 }

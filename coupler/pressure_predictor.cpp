@@ -1,0 +1,29 @@
+#include "coupler/pressure_predictor.h"
+
+namespace cosim::coupler {
+
+void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
+  const std::vector<double> p_now = s.pressure;
+  const std::vector<char> wet_now = s.wetted;
+  if (have_prev_ && t > prev_time_ && dt > 0 && prev_pressure_.size() == s.pressure.size() &&
+      prev_wetted_.size() == s.wetted.size()) {
+    const double r = dt / (t - prev_time_);
+    for (int f = 0; f < s.count; ++f) {
+      const bool wet = s.wetted.empty() || s.wetted[f], was_wet = prev_wetted_.empty() || prev_wetted_[f];
+      if (!wet || !was_wet) continue;
+      for (int k = 0; k < s.phases; ++k) {
+        const std::size_t i = static_cast<std::size_t>(f) * s.phases + k;
+        const double p = s.pressure[i] + r * (s.pressure[i] - prev_pressure_[i]);
+        if (p > 0) s.pressure[i] = p;
+      }
+    }
+  }
+  if (!have_prev_ || t > prev_time_) {  // the first of several samples at one time (cycle 0 and 1) counts
+    prev_pressure_ = p_now;
+    prev_wetted_ = wet_now;
+    prev_time_ = t;
+    have_prev_ = true;
+  }
+}
+
+}  // namespace cosim::coupler
