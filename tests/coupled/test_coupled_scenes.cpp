@@ -4,6 +4,8 @@
 #include <signal.h>
 
 #include <chrono>
+#include <regex>
+#include <set>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -120,4 +122,48 @@ TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
   EXPECT_NE(std::system(left.c_str()), 0) << "a process of the run is still alive";
   io::Hdf5File snap(dir / "fluid" / "fluid_000001.h5", io::Hdf5File::Mode::ReadOnly);
   EXPECT_EQ(snap.read_doubles("/cell/gas_pressure").size(), 160u * 8u);
+}
+
+// Ctrl-C on the launcher of a real run: exit code 130 within 5 s, no process of the run left, and every
+// snapshot the XDMF index lists is complete and readable.
+TEST(CoupledScenes, InterruptStopsAllThreeAndKeepsCompleteSnapshots) {
+  const fs::path dir = run_dir("interrupt");
+  const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
+                          dir.string() + " --quiet --set coupling.time.end=100 > " + dir.string() +
+                          ".log 2>&1 & echo $!";
+  FILE* f = ::popen(cmd.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  long pid = 0;
+  ASSERT_EQ(std::fscanf(f, "%ld", &pid), 1);
+  ::pclose(f);
+  for (int i = 0; i < 200 && !fs::exists(dir / "fluid" / "fluid_000001.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(fs::exists(dir / "fluid" / "fluid_000001.h5")) << run_logs(dir);
+  ASSERT_EQ(::kill(static_cast<pid_t>(pid), SIGINT), 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (::kill(static_cast<pid_t>(pid), 0) == 0 && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(10))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("[ measured ] Ctrl-C: the launcher ended %.2f s later\n", waited);
+  EXPECT_LT(waited, 5.0);
+  EXPECT_NE(read_text(fs::path(dir.string() + ".log")).find("interrupted"), std::string::npos)
+      << read_text(fs::path(dir.string() + ".log"));
+  const std::string left = "pgrep -f '" + dir.string() + "/[s]cene.yaml' > /dev/null";
+  EXPECT_NE(std::system(left.c_str()), 0) << "a process of the run is still alive";
+  // Every snapshot named in the index opens and holds the full field.
+  for (const char* solver : {"fluid", "solid"}) {
+    const std::string xmf = read_text(dir / solver / (std::string(solver) + ".xmf"));
+    const std::regex file(std::string(solver) + "_[0-9]{6}\\.h5");
+    std::set<std::string> names;
+    for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), file); it != std::sregex_iterator(); ++it)
+      names.insert(it->str());
+    const int listed = static_cast<int>(names.size());
+    for (const std::string& name : names) {
+      io::Hdf5File h(dir / solver / name, io::Hdf5File::Mode::ReadOnly);
+      EXPECT_FALSE(h.read_doubles(std::string("/cell/") + (std::string(solver) == "fluid" ? "gas_pressure" : "pressure"))
+                       .empty())
+          << name;
+    }
+    EXPECT_GE(listed, 2) << solver;
+  }
 }
