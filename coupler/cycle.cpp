@@ -70,13 +70,15 @@ struct Loop {
     pb::Envelope samples_msg = hub.expect(Role::Fluid, pb::Envelope::kSamples, n);
 
     const double c0 = now_s();
-    const coupling::Faces faces = coupling::from_pb(faces_msg.faces());
+    last_faces = coupling::from_pb(faces_msg.faces());  // kept for the interface snapshots
+    const coupling::Faces& faces = last_faces;
     coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
     if (samples.count != faces.count)
       hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
                                           faces.count));
     if (cfg.pressure_predictor) predictor.apply(samples, t, dt);
-    const coupling::InterfaceStates st = interface_conditions(faces, samples, cfg.mode);
+    last_states = interface_conditions(faces, samples, cfg.mode);
+    const coupling::InterfaceStates& st = last_states;
     pb::Envelope to_fluid = envelope(hub, n, t + dt);
     coupling::to_pb(st, *to_fluid.mutable_states());
     to_fluid.mutable_states()->clear_face_pressure();
@@ -99,8 +101,6 @@ struct Loop {
     tm.wall = c1 - start;
     tm.coupler = coupler_time;
     history.record(n, t + dt, dt, faces, st, tm);
-    last_faces = faces;
-    last_states = st;
     tm.coupler += now_s() - c1;
     sum.total.wall += tm.wall;
     sum.total.solid += tm.solid;
