@@ -14,6 +14,9 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   c.mode = mode == "standard"         ? coupling::Mode::Standard
            : mode == "characteristic" ? coupling::Mode::Characteristic
                                       : coupling::Mode::Impedance;
+  c.scheme = n.get<std::string>("scheme", "pipelined", one_of({"pipelined", "sequential"})) == "sequential"
+                 ? coupling::Scheme::Sequential
+                 : coupling::Scheme::Pipelined;
   Node t = n.child("time");
   c.t_end = t.require<double>("end", positive());
   c.max_cycles = t.get<int>("max_cycles", 1000000000, int_at_least(1));

@@ -6,6 +6,7 @@
 //     timeout: 5.0               # [s] a peer silent for longer is declared dead
 //     heartbeat_interval: 0.5    # [s] (default: timeout / 10)
 //     connect_timeout: 30.0      # [s] to wait for both solvers' Hello
+//     scheme: pipelined          # pipelined | sequential: order of the cycle (docs/protocol.md, "Schemes")
 //     predictor: linear          # linear | none: fluid pressures extrapolated to the solid's time (cycle.h)
 #pragma once
 
@@ -18,6 +19,7 @@ namespace cosim::coupler {
 
 struct CouplerConfig {
   coupling::Mode mode = coupling::Mode::Impedance;
+  coupling::Scheme scheme = coupling::Scheme::Pipelined;
   double t_end = 0.0;
   long max_cycles = 1000000000L;
   double dt_max = 0.0;  // 0: no limit

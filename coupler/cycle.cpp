@@ -40,6 +40,7 @@ double choose_dt(double proposal_min, double dt_max, double t, double t_next_out
 namespace {
 
 struct Loop {
+  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir) : cfg(c), hub(h), history(dir) {}
   const CouplerConfig& cfg;
   Hub& hub;
   History history;
@@ -54,24 +55,57 @@ struct Loop {
   coupling::InterfaceStates last_states;
   PressurePredictor predictor;
 
-  // One cycle; returns the smallest proposal for the next one.
+  // Timing of the open cycle: from its DtDecision to the next one (or the end of the run).
+  CycleTiming open;
+  long open_cycle = -1;
+  double open_start = 0, busy0_f = 0, busy0_s = 0;
+
+  void close_timing() {
+    if (open_cycle < 0) return;
+    open.wall = now_s() - open_start;
+    open.solid = hub.peer(Role::Solid).busy - busy0_s;
+    open.fluid = hub.peer(Role::Fluid).busy - busy0_f;
+    open.overlapped = cfg.scheme == coupling::Scheme::Pipelined;
+    history.record_timing(open_cycle, open);
+    sum.total.wall += open.wall;
+    sum.total.solid += open.solid;
+    sum.total.fluid += open.fluid;
+    sum.total.coupler += open.coupler;
+    sum.total.overlapped = open.overlapped;
+    open_cycle = -1;
+  }
+
+  void open_timing(long n) {
+    close_timing();
+    open = {};
+    open_cycle = n;
+    open_start = now_s();
+    busy0_f = hub.peer(Role::Fluid).busy;
+    busy0_s = hub.peer(Role::Solid).busy;
+  }
+
+  // One cycle; returns the smallest proposal for the next one. The coupler's order is the same in both
+  // schemes: the fluid's place of its DtProposal (before or after its advance) makes the cycle pipelined.
   double cycle(long n, double t, double dt) {
-    const double start = now_s();
-    const double busy0_f = hub.peer(Role::Fluid).busy, busy0_s = hub.peer(Role::Solid).busy;
+    open_timing(n);
     pb::Envelope d = envelope(hub, n, t);
     d.mutable_dt_decision()->set_dt(dt);
     d.mutable_dt_decision()->set_target_time(t + dt);
     send_both(d);
 
+    // Work that waits for the solid (faces) is done before the fluid's samples arrive; from the samples to the
+    // fluid's states (the pipelined cycle's critical path) only the interface conditions.
     pb::Envelope faces_msg = hub.expect(Role::Solid, pb::Envelope::kFaces, n);
+    double c0 = now_s();
+    last_faces = coupling::from_pb(faces_msg.faces());  // kept for the interface snapshots
+    const coupling::Faces& faces = last_faces;
     pb::Envelope fwd = envelope(hub, n, t + dt);
-    *fwd.mutable_faces() = faces_msg.faces();
+    fwd.mutable_faces()->Swap(faces_msg.mutable_faces());
+    open.coupler += now_s() - c0;
     hub.send(Role::Fluid, fwd);
     pb::Envelope samples_msg = hub.expect(Role::Fluid, pb::Envelope::kSamples, n);
 
-    const double c0 = now_s();
-    last_faces = coupling::from_pb(faces_msg.faces());  // kept for the interface snapshots
-    const coupling::Faces& faces = last_faces;
+    c0 = now_s();
     coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
     if (samples.count != faces.count)
       hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
@@ -84,28 +118,21 @@ struct Loop {
     to_fluid.mutable_states()->clear_face_pressure();
     to_fluid.mutable_states()->clear_face_normal_velocity();
     to_fluid.mutable_states()->clear_face_wetted();
+    open.coupler += now_s() - c0;
+    hub.send(Role::Fluid, to_fluid);
+    c0 = now_s();
     pb::Envelope to_solid = envelope(hub, n, t + dt);
     coupling::to_pb(st, *to_solid.mutable_states());
     to_solid.mutable_states()->set_phases(0);
     to_solid.mutable_states()->clear_pressure();
     to_solid.mutable_states()->clear_normal_velocity();
-    double coupler_time = now_s() - c0;
-    hub.send(Role::Fluid, to_fluid);
+    open.coupler += now_s() - c0;
     hub.send(Role::Solid, to_solid);
 
     auto proposals = hub.expect_both(pb::Envelope::kDtProposal, n);
     const double c1 = now_s();
-    CycleTiming tm;
-    tm.solid = hub.peer(Role::Solid).busy - busy0_s;
-    tm.fluid = hub.peer(Role::Fluid).busy - busy0_f;
-    tm.wall = c1 - start;
-    tm.coupler = coupler_time;
-    history.record(n, t + dt, dt, faces, st, tm);
-    tm.coupler += now_s() - c1;
-    sum.total.wall += tm.wall;
-    sum.total.solid += tm.solid;
-    sum.total.fluid += tm.fluid;
-    sum.total.coupler += tm.coupler;
+    history.record(n, t + dt, dt, faces, st);
+    open.coupler += now_s() - c1;
     return std::min(proposals[0].dt_proposal().dt(), proposals[1].dt_proposal().dt());
   }
 
@@ -118,7 +145,9 @@ struct Loop {
       pb::Envelope o = envelope(hub, n, t);
       o.mutable_output_request()->set_index(out_index++);
       send_both(o);
+      const double c0 = now_s();
       history.snapshot(n, t, last_faces, last_states);
+      open.coupler += now_s() - c0;
     };
     for (long n = 0;; ++n) {
       const double proposal = cycle(n, t, dt);
@@ -147,6 +176,7 @@ struct Loop {
     }
     history.progress(sum.cycles, t, cfg.t_end, true);
     hub.stop_all(sum.message, false);
+    close_timing();
   }
 };
 
@@ -155,7 +185,7 @@ struct Loop {
 RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir) {
   RunSummary s;
   try {
-    Loop loop{cfg, hub, History(out_dir), {}, {}, {}, {}};
+    Loop loop(cfg, hub, out_dir);
     try {
       loop.run();
       return loop.sum;

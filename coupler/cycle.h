@@ -1,7 +1,9 @@
 // The coupled cycle of DESIGN.md / paper section 8, driven by the coupler (docs/protocol.md):
-//   cycle n (t^n -> t^n + dt):  DtDecision -> both;  solid advances, sends InterfaceFaces;  faces -> fluid;
-//   fluid samples, sends FluidSamples;  interface conditions;  InterfaceStates -> fluid and solid;
-//   fluid advances;  DtProposal <- both;  OutputRequest when an output time is reached;  next dt = min of proposals.
+//   cycle n (t^n -> t^n + dt):  DtDecision -> both;  solid advances, sends InterfaceFaces and DtProposal;
+//   faces -> fluid;  fluid samples, sends FluidSamples;  interface conditions;  InterfaceStates -> fluid and
+//   solid;  DtProposal <- fluid (pipelined scheme: before its advance, so the next DtDecision, and the solid's
+//   next step, overlap the fluid's advance; sequential: after it);  OutputRequest when an output time is
+//   reached;  next dt = min of proposals.
 // Cycle 0 is the initial exchange with dt = 0 (nobody advances): the solid gets its first interface pressure.
 #pragma once
 

@@ -1,13 +1,16 @@
 // Per-cycle records of a coupled run in the output directory:
 //   interface_history.csv  cycle, time [s], dt [s], force on the solid F = -sum p_face A n [N] (x, y, z),
 //                          area-weighted mean face velocity [m/s] and centre [m] (x, y, z), mean face pressure [Pa]
-//   timing.csv             cycle, wall [s], solid busy, fluid busy, coupler compute, communication/wait [s]
+//   timing.csv             cycle, wall [s] (DtDecision n sent .. DtDecision n+1 sent), solid busy, fluid busy
+//                          (work reported with the messages received in that window), coupler work
+//                          (interface conditions, history, snapshots), communication/wait [s] (CycleTiming::comm)
 //   progress.txt           one line "cycle time t_end", replaced at most twice a second (the launcher reads it)
 //   interface_NNNNNN.h5 + interface.xmf   at every output request: the interface faces (segments in 2D, quads
 //                          in 3D, as the solid sent them) with cell fields pressure, normal_velocity (u_I . n),
 //                          normal_stress, impedance, wetted, normal, velocity (ParaView: Xdmf3 reader)
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -18,14 +21,17 @@ namespace cosim::coupler {
 
 struct CycleTiming {
   double wall = 0, solid = 0, fluid = 0, coupler = 0;
-  double comm() const { return wall - solid - fluid - coupler; }
+  bool overlapped = false;  // pipelined scheme: the solid's step runs during the fluid's
+  // Everything that is not solver or coupler work: sequential, wall - solid - fluid - coupler; pipelined, the
+  // solvers overlap, so only the longer of the two is on the critical path.
+  double comm() const { return wall - coupler - (overlapped ? std::max(solid, fluid) : solid + fluid); }
 };
 
 class History {
  public:
   explicit History(const std::filesystem::path& dir);  // throws CouplingError naming the file
-  void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st,
-              const CycleTiming& timing);
+  void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st);
+  void record_timing(long cycle, const CycleTiming& timing);
   void progress(long cycle, double time, double t_end, bool force = false);
   // One interface snapshot; skipped when the faces carry no vertex data (or triangles).
   void snapshot(long cycle, double time, const coupling::Faces& faces, const coupling::InterfaceStates& st);

@@ -22,6 +22,8 @@ double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 const std::array<Role, 2> kRoles{Role::Fluid, Role::Solid};
+// A pipelined solid runs one step ahead (faces, proposal); more than this waiting means a peer ignores the cycle.
+constexpr std::size_t kMaxAhead = 16;
 }  // namespace
 
 std::string Peer::describe(Role r) const {
@@ -111,6 +113,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     welcome->set_heartbeat_interval(opt_.heartbeat_interval);
     welcome->set_timeout(opt_.timeout);
     welcome->set_mode(coupling::to_pb(opt_.mode));
+    welcome->set_scheme(coupling::to_pb(opt_.scheme));
     if (!reason.empty()) {
       sock_.send({id, coupling::encode(w)}, 500);
       const std::string who = e->hello().program().empty() ? "a peer" : e->hello().program();
@@ -215,36 +218,40 @@ void Hub::send(Role to, pb::Envelope& e) {
   if (transcript_) transcript_->record("->", to, e);
 }
 
+pb::Envelope Hub::next_from(Role from, const std::string& waiting_for) {
+  auto& mine = inbox_[index(from)];
+  if (!mine.empty()) {
+    pb::Envelope e = std::move(mine.front());
+    mine.pop_front();
+    return e;
+  }
+  for (;;) {
+    Incoming in = next_data(waiting_for);
+    if (in.from == from) return std::move(in.e);
+    auto& other = inbox_[index(in.from)];
+    if (other.size() >= kMaxAhead)
+      fail_peer(in.from, fmt::format("sent {} messages ahead of the cycle (last: {}) while the coupler waits for {} "
+                                     "from the {}",
+                                     other.size() + 1, coupling::body_name(in.e), waiting_for, coupling::role_name(from)));
+    other.push_back(std::move(in.e));
+  }
+}
+
 pb::Envelope Hub::expect(Role from, pb::Envelope::BodyCase kind, long cycle) {
-  Incoming in = next_data(coupling::body_name(kind));
-  if (in.from != from)
-    fail_peer(in.from, fmt::format("sent {} out of order: the coupler waits for {} from the {} in cycle {}",
-                                   coupling::body_name(in.e), coupling::body_name(kind), coupling::role_name(from), cycle));
-  if (in.e.body_case() != kind)
-    fail_peer(from, fmt::format("sent {} out of order: expected {} in cycle {}", coupling::body_name(in.e),
+  pb::Envelope e = next_from(from, coupling::body_name(kind));
+  if (e.body_case() != kind)
+    fail_peer(from, fmt::format("sent {} out of order: expected {} in cycle {}", coupling::body_name(e),
                                 coupling::body_name(kind), cycle));
-  if (in.e.header().cycle() != cycle)
+  if (e.header().cycle() != cycle)
     fail_peer(from, fmt::format("sent {} for cycle {}, expected cycle {}", coupling::body_name(kind),
-                                in.e.header().cycle(), cycle));
-  if (transcript_) transcript_->record("<-", from, in.e);
-  return std::move(in.e);
+                                e.header().cycle(), cycle));
+  if (transcript_) transcript_->record("<-", from, e);
+  return e;
 }
 
 std::array<pb::Envelope, 2> Hub::expect_both(pb::Envelope::BodyCase kind, long cycle) {
-  std::array<pb::Envelope, 2> got;
-  std::array<bool, 2> have{false, false};
-  while (!have[0] || !have[1]) {
-    Incoming in = next_data(coupling::body_name(kind));
-    const int i = index(in.from);
-    if (in.e.body_case() != kind || have[i] || in.e.header().cycle() != cycle)
-      fail_peer(in.from, fmt::format("sent {} (cycle {}) out of order: expected {} in cycle {}", coupling::body_name(in.e),
-                                     in.e.header().cycle(), coupling::body_name(kind), cycle));
-    have[i] = true;
-    got[i] = std::move(in.e);
-  }
-  if (transcript_)
-    for (Role r : kRoles) transcript_->record("<-", r, got[index(r)]);
-  return got;
+  // In role order; the one that comes later waits in its inbox meanwhile.
+  return {expect(Role::Fluid, kind, cycle), expect(Role::Solid, kind, cycle)};
 }
 
 void Hub::stop_all(const std::string& reason, bool failure) noexcept {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@ struct HubOptions {
   std::string token;
   std::string scene_hash;
   coupling::Mode mode = coupling::Mode::Impedance;
+  coupling::Scheme scheme = coupling::Scheme::Pipelined;
   double timeout = 5.0;             // [s]
   double heartbeat_interval = 0.5;  // [s]
   double connect_timeout = 30.0;    // [s]
@@ -48,7 +50,9 @@ class Hub {
   void handshake();
   // Sends to a peer; header filled by the hub (cycle, time).
   void send(coupling::Role to, coupling::pb::Envelope& e);
-  // Next data message of `kind` from `from` for `cycle`; throws ProtocolError/PeerLost otherwise.
+  // Next data message of `kind` from `from` for `cycle`; throws ProtocolError/PeerLost otherwise. Each peer's
+  // messages are taken in the order it sent them; what the other peer sends meanwhile waits in its inbox (a
+  // pipelined solid is a step ahead of the fluid).
   coupling::pb::Envelope expect(coupling::Role from, coupling::pb::Envelope::BodyCase kind, long cycle);
   // One message of `kind` from each solver (any order), returned as {fluid, solid}.
   std::array<coupling::pb::Envelope, 2> expect_both(coupling::pb::Envelope::BodyCase kind, long cycle);
@@ -69,6 +73,8 @@ class Hub {
   };
   // Blocks until a data message from a connected peer arrives (heartbeats and strangers handled inside).
   Incoming next_data(const std::string& waiting_for);
+  // The next message of one peer: its inbox first, else from the socket, queueing the other peer's.
+  coupling::pb::Envelope next_from(coupling::Role from, const std::string& waiting_for);
   bool poll_once(int timeout_ms, Incoming& out);
   void beat_and_check();
   void reply_error(const std::string& id, const std::string& reason);
@@ -81,6 +87,7 @@ class Hub {
   coupling::ZmqSocket sock_{ctx_, coupling::ZmqSocket::Type::Router};
   std::string bound_;
   std::array<Peer, 2> peers_;
+  std::array<std::deque<coupling::pb::Envelope>, 2> inbox_;  // received, not yet expected
   double next_beat_ = 0, wait_ = 0;
   bool handshake_done_ = false;
   long cycle_ = 0;

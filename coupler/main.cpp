@@ -79,14 +79,15 @@ int main(int argc, char** argv) {
   ho.endpoint = endpoint;
   ho.token = token;
   ho.mode = cfg.mode;
+  ho.scheme = cfg.scheme;
   ho.timeout = cfg.timeout;
   ho.heartbeat_interval = cfg.heartbeat_interval;
   ho.connect_timeout = cfg.connect_timeout;
   try {
     coupler::Transcript tr(transcript);
     coupler::Hub hub(ho, transcript.empty() ? nullptr : &tr);
-    spdlog::info("listening on {} ({} coupling, timeout {:g} s)", hub.bound_endpoint(), coupling::mode_name(cfg.mode),
-                 cfg.timeout);
+    spdlog::info("listening on {} ({} coupling, {} cycle, timeout {:g} s)", hub.bound_endpoint(),
+                 coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.timeout);
     const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out);
     write_summary(out, s);
     if (s.code == 0) {

@@ -40,6 +40,7 @@ class Client:
         self.sock.setsockopt(zmq.LINGER, 500)
         self.sock.connect(endpoint)
         self._last_return = time.monotonic()
+        self._busy = 0.0  # work since the previous send, up to _last_return [s]
         self._lost = None
         self._stop = threading.Event()
         e = self._envelope()
@@ -56,6 +57,8 @@ class Client:
             raise CouplingError("coupler at %s refused %s: %s" % (endpoint, role, w.welcome.reason))
         self.timeout = w.welcome.timeout or 5.0
         self.mode = w.welcome.mode
+        # SEQUENTIAL or PIPELINED (unspecified reads as pipelined): only a fluid's DtProposal moves with it
+        self.scheme = w.welcome.scheme or pb.COUPLING_SCHEME_PIPELINED
         self._hb = threading.Thread(target=self._heartbeat, args=(w.welcome.heartbeat_interval or 1.0,), daemon=True)
         self._hb.start()
 
@@ -67,8 +70,10 @@ class Client:
         return e
 
     def _send(self, e):
-        e.header.busy_seconds = time.monotonic() - self._last_return
+        e.header.busy_seconds = self._busy + time.monotonic() - self._last_return
+        self._busy = 0.0
         self.sock.send(e.SerializeToString())
+        self._last_return = time.monotonic()
 
     def _fail(self, what):
         e = self._envelope()
@@ -100,6 +105,7 @@ class Client:
 
     def _receive(self, expected, max_wait=0.0):
         start = time.monotonic()
+        self._busy += start - self._last_return
         while not self.sock.poll(100):
             if self._lost:
                 raise CouplingError(self._lost)

@@ -125,9 +125,9 @@ def main():
             v += dt * force / m
             x += dt * v
             c.send_faces(box_faces(a.dim, left + x, right + x, lower, upper, v, area))
+            c.propose_dt(a.dt)
             st = c.receive_states()
             p = list(st.face_pressure)
-            c.propose_dt(a.dt)
     except CouplingError as e:
         print(tag + "error: %s" % e, file=sys.stderr)
         c.report_error(str(e))

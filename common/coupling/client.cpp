@@ -25,16 +25,21 @@ struct Client::Impl {
   ZmqSocket data{ctx, ZmqSocket::Type::Dealer};
   std::unique_ptr<Heartbeat> heartbeat;
   Mode mode = Mode::Impedance;
+  Scheme scheme = Scheme::Pipelined;
   double timeout = 5.0;
   long cycle = -1;
   double time = 0.0;
   double last_return = now_s();  // end of the previous protocol call: the solver works from here on
+  double busy = 0;               // solver work since the previous send, up to last_return [s]
 
+  // Header.busy_seconds: the solver's work since its previous message, over all protocol calls in between.
   void send(pb::Envelope& e) {
-    e.mutable_header()->set_busy_seconds(now_s() - last_return);
+    e.mutable_header()->set_busy_seconds(busy + (now_s() - last_return));
+    busy = 0;
     if (!data.send({encode(e)}, 5000))
       throw PeerLost(fmt::format("{}: cannot send {} to the coupler at {}", role_name(opt.role), body_name(e),
                                  opt.endpoint));
+    last_return = now_s();
   }
 
   pb::Envelope envelope() { return make_envelope(opt.role, opt.token, cycle, time); }
@@ -51,6 +56,7 @@ struct Client::Impl {
   // is dead or (before the heartbeats run) after max_wait seconds.
   pb::Envelope receive(const std::string& expected, double max_wait) {
     const double start = now_s();
+    busy += start - last_return;
     Frames frames;
     while (!data.receive(frames, 100)) {
       if (heartbeat && heartbeat->lost()) throw PeerLost(heartbeat->lost_message());
@@ -104,6 +110,7 @@ struct Client::Impl {
       throw Refused(fmt::format("coupler at {} refused {}: {}", opt.endpoint, role_name(opt.role),
                                 w.welcome().reason()));
     mode = from_pb(w.welcome().mode());
+    scheme = from_pb(w.welcome().scheme());
     timeout = w.welcome().timeout() > 0 ? w.welcome().timeout() : 5.0;
     const double interval = w.welcome().heartbeat_interval() > 0 ? w.welcome().heartbeat_interval() : 1.0;
     heartbeat = std::make_unique<Heartbeat>(ctx, opt.endpoint, opt.role, opt.token, interval, timeout);
@@ -205,6 +212,7 @@ void Client::close() noexcept {
 }
 
 Mode Client::mode() const { return impl_->mode; }
+Scheme Client::scheme() const { return impl_->scheme; }
 double Client::timeout() const { return impl_->timeout; }
 long Client::cycle() const { return impl_->cycle; }
 double Client::time() const { return impl_->time; }

@@ -6,8 +6,8 @@
 //     Directive d = c.next();                      // DtDecision, OutputRequest or Stop
 //     if (d.kind == Directive::Kind::Stop) break;
 //     if (d.kind == Directive::Kind::Output) { write snapshot d.output_index; continue; }
-//     ... solver-specific cycle (docs/protocol.md "Writing a solver client") ...
-//     c.propose_dt(stable_dt);
+//     ... solver-specific cycle with one c.propose_dt(stable_dt) (docs/protocol.md "Writing a solver client":
+//     where it goes depends on c.scheme() for the fluid) ...
 //   }
 //
 // Every call blocks until the expected message arrives. While waiting, a background thread exchanges
@@ -53,7 +53,7 @@ class Client {
   Faces receive_faces();                         // fluid, once per cycle
   void send_samples(const FluidSamples& s);      // fluid, once per cycle
   InterfaceStates receive_states();              // both, once per cycle
-  void propose_dt(double dt);                    // both, last message of each cycle [s]
+  void propose_dt(double dt);                    // both, once per cycle [s]
 
   // Tells the coupler that this solver cannot go on (best effort, never throws).
   void report_error(const std::string& reason) noexcept;
@@ -63,6 +63,7 @@ class Client {
   void close() noexcept;
 
   Mode mode() const;
+  Scheme scheme() const;  // where the fluid proposes its step (types.h)
   double timeout() const;  // [s]
   long cycle() const;      // current cycle (-1 before the first DtDecision)
   double time() const;     // t^n of the current cycle [s]

@@ -15,6 +15,13 @@ const char* role_name(Role r);  // "coupler", "fluid", "solid"
 enum class Mode { Impedance, Standard, Characteristic };
 const char* mode_name(Mode m);  // "impedance", "standard", "characteristic"
 
+// Order of the cycle (docs/protocol.md, "Schemes"). Pipelined: the fluid proposes its next step from t^n right
+// after its samples, so the coupler decides the next step before the fluid advances and the solid's step n+1
+// runs while the fluid advances step n (the fluid's proposal lags one step). Sequential: the fluid proposes
+// from t^{n+1} after its advance; the solvers work one after the other.
+enum class Scheme { Pipelined, Sequential };
+const char* scheme_name(Scheme s);  // "pipelined", "sequential"
+
 // Solid -> fluid: the solid's exterior faces (solid_solver/core/boundary_faces.h).
 struct Faces {
   int dim = 3;

@@ -26,6 +26,16 @@ const char* mode_name(Mode m) {
   return "?";
 }
 
+const char* scheme_name(Scheme s) { return s == Scheme::Sequential ? "sequential" : "pipelined"; }
+
+pb::CouplingScheme to_pb(Scheme s) {
+  return s == Scheme::Sequential ? pb::COUPLING_SCHEME_SEQUENTIAL : pb::COUPLING_SCHEME_PIPELINED;
+}
+
+Scheme from_pb(pb::CouplingScheme s) {
+  return s == pb::COUPLING_SCHEME_SEQUENTIAL ? Scheme::Sequential : Scheme::Pipelined;
+}
+
 pb::Role to_pb(Role r) {
   switch (r) {
     case Role::Coupler: return pb::ROLE_COUPLER;

@@ -17,6 +17,8 @@ pb::Role to_pb(Role r);
 Role from_pb(pb::Role r);  // ROLE_UNSPECIFIED -> Coupler is never produced: throws ProtocolError
 pb::CouplingMode to_pb(Mode m);
 Mode from_pb(pb::CouplingMode m);
+pb::CouplingScheme to_pb(Scheme s);
+Scheme from_pb(pb::CouplingScheme s);  // UNSPECIFIED -> Pipelined
 
 // "InterfaceFaces", "Hello", ..., or "(empty)" when no body is set.
 std::string body_name(const pb::Envelope& e);

@@ -56,6 +56,9 @@ int run_solid_coupled(const RunOptions& opt) {
     const coupling::Faces faces = interface_faces(sim->boundary_faces(), map, sim->state());
     solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     client->send_faces(faces);
+    // The proposal does not depend on the states: sent at once, so that in the pipelined cycle the coupler
+    // can decide the next step as soon as the fluid has proposed.
+    client->propose_dt(scene.numerics.max_subcycles * sim->stable_dt());
     const coupling::InterfaceStates st = client->receive_states();
     if (st.count != faces.count)
       throw std::invalid_argument(
@@ -67,7 +70,6 @@ int run_solid_coupled(const RunOptions& opt) {
     apply_velocity = client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
     if (apply_velocity) sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
     last = st;
-    client->propose_dt(scene.numerics.max_subcycles * sim->stable_dt());
   };
   const auto output = [&](const coupling::Directive&) {
     if (scene.write_snapshots) write_snapshot(series, *sim);

@@ -51,7 +51,7 @@ TEST(CouplingProcesses, VersionMismatchRefusedOnBothSides) {
   EXPECT_EQ(r.cs[0].exit_code, 5);
   EXPECT_EQ(r.cs[1].exit_code, 5);
   EXPECT_NE(r.cs[2].exit_code, 0);
-  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version 2";
+  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version " + std::to_string(cosim::coupling::kProtocolVersion);
   EXPECT_NE(r.log(0).find(expected), std::string::npos) << r.log(0);
   EXPECT_NE(r.log(1).find("refused fluid: " + expected), std::string::npos) << r.log(1);
   // The solid is told why when it had connected before the refusal, otherwise it gets no Welcome.
