@@ -1,37 +1,59 @@
 #!/usr/bin/python3
-"""Overhead of the coupled cycle: everything that is not solver work, per cycle and as a fraction of wall
-time, against a bare ZeroMQ round trip between two processes on the same machine.
+"""Overhead of the coupled cycle in both coupling schemes (coupling.scheme: pipelined, the default, and
+sequential; docs/protocol.md "Schemes"): everything that is not solver work, per cycle and as a fraction of
+wall time, against bare ZeroMQ patterns between processes on the same machine.
 
 For each scene (configs/piston_2d.yaml: rigid piston, 12 interface faces; bench/coupled/
 overhead_128.yaml: 128 x 128 air, 32 x 32 steel block, 128 faces, 300 cycles), each OpenMP setting
 (OMP_NUM_THREADS=1, and the default) and each transport (ipc://, the launcher's default, and tcp:// with
-`cosim run --tcp`), --repeat times:
+`cosim run --tcp`), --repeat times, and within each repeat for both schemes (`--set coupling.scheme=...`;
+the order of the two alternates from repeat to repeat, so that a drift of the machine favours neither):
   1. coupled_zmq_round_trip (bench/coupled/zmq_round_trip.cpp) for the scene's face count, right before
-     the coupled run (this machine's latency drifts by 2x within minutes, so yardstick and run are taken
-     together): a 64 B round trip; the cycle's critical path as 3 request/reply pairs of the real message
-     sizes (decision -> faces, faces -> samples, states -> proposal); and the whole cycle between three
-     processes with all nine messages and no work ("protocol");
-  2. `cosim run` of the scene; coupler/timing.csv gives the steady-state cycle (cycles 3 .. last-1; cycles
-     0-2 write the first snapshots), coupler_summary.json the whole-run means;
-  3. the three-process protocol again, with the solvers' measured busy times as busy loops (solid; fluid
-     sampling = geometry_seconds of fluid/summary.json; fluid advance = the rest): what communication costs
-     when the cores are also busy with solver work, without any solver, protobuf or coupler code.
-The repeat with the median comm is reported; ratios are taken within a repeat.
+     the coupled run of the scheme (this machine's latency drifts by 2x within minutes, so yardstick and run
+     are taken together): a 64 B round trip; the scheme's critical path as request/reply pairs of the real
+     message sizes ("cycle": sequential, 3 round trips decision -> faces, faces -> samples, states ->
+     proposal; "cycle_pipelined": pipelined, 1 round trip samples -> states); and the whole cycle between
+     three processes with all nine messages in the scheme's order and no work ("protocol" for sequential,
+     "protocol_pipelined" for pipelined);
+  2. `cosim run` of the scene with the scheme; coupler/timing.csv gives the steady-state cycle (cycles 3 ..
+     last-1; cycles 0-2 write the first snapshots), coupler_summary.json the whole-run means;
+  3. the three-process pattern of the scheme again, with the solvers' measured busy times as busy loops
+     (solid; fluid sampling = geometry_seconds of fluid/summary.json; fluid advance = the rest): what
+     communication costs when the cores are also busy with solver work, without any solver, protobuf or
+     coupler code. The bare pattern subtracts the same work as the coupler's comm (below).
+Per scheme, the repeat with the median comm is reported; ratios are taken within a repeat. The wall-time ratio
+sequential / pipelined is taken per repeat (both runs of one repeat) and its median reported.
 
-Definitions (coupler/cycle.cpp): wall = the coupler's wall time of a cycle (DtDecision sent .. both
-DtProposals received); solid, fluid = the solvers' busy_seconds (work outside protocol calls); coupler = the
-coupler's own work (interface conditions, history); comm = wall - solid - fluid - coupler (ZeroMQ, protobuf
-encode/decode/validate, waiting to be scheduled). Overhead = comm + coupler.
-Exchanges per cycle: 4, as the issue counts them (decision->faces, faces->samples, samples->states,
-states->proposal). They overlap: the critical path holds 6 one-way messages = 3 round trips, which the bare
-"cycle" pattern reproduces; comm per cycle / bare cycle is the per-exchange ratio for any exchange count.
+Definitions (coupler/cycle.cpp, coupler/history.h CycleTiming): wall = the coupler's wall time of a cycle
+(DtDecision n sent .. DtDecision n+1 sent); solid, fluid = the solvers' busy_seconds (work outside protocol
+calls) reported in that window; coupler = the coupler's own work (interface conditions, history); comm =
+everything else (ZeroMQ, protobuf encode/decode/validate, waiting to be scheduled):
+  sequential: comm = wall - coupler - solid - fluid (one solver works at a time);
+  pipelined:  comm = wall - coupler - max(solid, fluid) (the solid's step n+1 overlaps the fluid's step n).
+Overhead = comm + coupler; "overhead share of wall" = (comm + coupler) / wall, per row.
+Per-exchange ratios, comparing comm per cycle with the bare patterns of the same scheme:
+  sequential: 4 exchanges per cycle, as the issue counts them (decision->faces, faces->samples,
+    samples->states, states->proposal); comm / exchange = comm / 4, against the bare 64 B round trip. They
+    overlap: the critical path holds 6 one-way messages = 3 round trips, which the bare "cycle" pattern
+    reproduces; comm / bare "cycle" is the per-exchange ratio for any exchange count.
+  pipelined: 1 exchange per cycle on the critical path, the round trip samples -> states (the solid's step,
+    the next DtDecision and the faces all reach the fluid while it advances, so when the fluid is the slower
+    solver, as in both scenes, they wait in its queue); comm / exchange = comm / 1, against the bare 64 B
+    round trip; comm / bare "cycle_pipelined" (that one round trip with the real sizes) is the ratio to the
+    bare critical path.
+  both: comm / the bare three-process pattern of the same scheme with the solvers' busy loops ("protocol" or
+    "protocol_pipelined", the same work subtracted as in the coupler's comm).
 
-With --perf (--perf-only: nothing else): overhead_128 (OMP 1, ipc) under `perf sched record` (context
-switches and scheduling delays per cycle and thread), and CPU time and context switches per cycle and process
+With --perf (--perf-only: nothing else): overhead_128 (OMP 1, ipc, the default scheme) under `perf sched record`
+(context switches and scheduling delays per cycle and thread), and CPU time and context switches per cycle and process
 (/usr/bin/time around each process, 900- minus 300-cycle run).
 
 Usage: bench/coupled/run_overhead.py [--quick] [--repeat N] [--no-tcp] [--perf | --perf-only] [--work DIR]
-Writes bench/results/coupled_overhead.png and prints markdown tables.
+                                     [--build DIR ...]
+Binaries (cosim, coupler, fluid_solver, solid_solver, coupled_zmq_round_trip) are taken from the first build
+directory that has them: --build DIR (repeatable), else $COSIM_BUILD_DIRS (build directories separated by ':'),
+else build/ then build-c/; relative paths are tried from the working directory, then from the repository root.
+Writes bench/results/coupled_overhead.png (--quick: coupled_overhead_quick.png) and prints markdown tables.
 """
 import argparse
 import csv
@@ -48,7 +70,13 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_common import RESULTS, ROOT, provenance  # noqa: E402
-EXCHANGES = 4  # per cycle, as the issue counts them
+SCHEMES = ("pipelined", "sequential")
+# Per scheme: exchanges per cycle (sequential: as the issue counts them; pipelined: the one round trip on the
+# critical path), the bare critical-path pattern and the bare three-process pattern of coupled_zmq_round_trip.
+EXCHANGES = {"sequential": 4, "pipelined": 1}
+CRITICAL = {"sequential": "cycle", "pipelined": "cycle_pipelined"}
+PROTOCOL = {"sequential": "protocol", "pipelined": "protocol_pipelined"}
+CRITICAL_LABEL = {"sequential": "3 RT", "pipelined": "1 RT"}
 SCENES = {
     # name: (scene file, interface faces of the solid box = 2 (nx + ny), --set for --quick)
     "piston_2d": (ROOT / "configs" / "piston_2d.yaml", 2 * (2 + 4), ["coupling.time.end=0.05"]),
@@ -58,11 +86,13 @@ TARGET_FRACTION = 0.05
 TARGET_RATIO = 3.0
 
 
-def find_bin(name, build_dirs):
+def find_bins(names, build_dirs):
+    """The first build directory's bin/ that holds all of `names` (relative directories: from the working
+    directory, then from the repository root); None when none does."""
     for d in build_dirs:
-        p = Path(d) / "bin" / name
-        if p.exists():
-            return p
+        for base in (Path(d), ROOT / d):
+            if all((base / "bin" / n).exists() for n in names):
+                return (base / "bin").resolve()
     return None
 
 
@@ -75,6 +105,9 @@ def bare(exe, faces, transport, count, protocol_work=(0, 0, 0), patterns="small,
         if line.startswith("{"):
             d = json.loads(line)
             res[d["pattern"]] = d
+    missing = [p for p in patterns.split(",") if p not in res]
+    if missing:
+        raise SystemExit(f"{exe} did not measure {', '.join(missing)}: rebuild it (ninja coupled_zmq_round_trip)")
     return res
 
 
@@ -94,10 +127,12 @@ def omp_env(threads):
     return env
 
 
-def coupled_run(cosim, scene, out, threads, tcp, extra_sets):
+def coupled_run(cosim, scene, out, threads, tcp, extra_sets, scheme=None):
     if out.exists():
         shutil.rmtree(out)
     cmd = [str(cosim), "run", str(scene), "--out", str(out), "--quiet"]
+    if scheme:
+        extra_sets = list(extra_sets) + [f"coupling.scheme={scheme}"]
     for s in extra_sets:
         cmd += ["--set", s]
     if tcp:
@@ -110,7 +145,7 @@ def coupled_run(cosim, scene, out, threads, tcp, extra_sets):
     tm = read_timing(out / "coupler" / "timing.csv")
     steady = (tm["cycle"] >= 3) & (tm["cycle"] < tm["cycle"].max())
     r = {"cycles": summ["cycles"], "summary": summ["per_cycle_seconds"], "comm_fraction_summary": summ["comm_fraction"],
-         "fluid_geometry": fl["geometry_seconds"] / max(1, fl["cycles"])}
+         "fluid_geometry": fl["geometry_seconds"] / max(1, fl["cycles"]), "scheme": fl.get("scheme")}
     for c in ["wall", "solid", "fluid", "coupler", "comm"]:
         r[c] = float(tm[c][steady].mean())
         r[c + "_median"] = float(np.median(tm[c][steady]))
@@ -234,28 +269,29 @@ def main():
     ap.add_argument("--repeat", type=int, default=3, help="repeats per configuration (median reported)")
     ap.add_argument("--work", default="/tmp/cosim_overhead", help="run directories (overwritten)")
     ap.add_argument("--build", action="append", default=None,
-                    help="build directory with bin/ (default: build, then build-c)")
+                    help="build directory with bin/, repeatable (default: $COSIM_BUILD_DIRS, ':'-separated, else "
+                         "build, then build-c)")
     ap.add_argument("--no-tcp", action="store_true", help="ipc:// only")
     ap.add_argument("--perf", action="store_true",
-                    help="also run overhead_128 (OMP 1, ipc) under `perf sched record`: context switches and "
-                         "scheduling delays per cycle and thread")
+                    help="also run overhead_128 (OMP 1, ipc, default scheme) under `perf sched record`: context "
+                         "switches and scheduling delays per cycle and thread")
     ap.add_argument("--perf-only", action="store_true", help="only the --perf measurements")
     a = ap.parse_args()
     a.perf = a.perf or a.perf_only
-    builds = a.build or [str(ROOT / "build"), str(ROOT / "build-c")]
-    cosim = find_bin("cosim", builds)
-    rt = find_bin("coupled_zmq_round_trip", builds)
-    if not cosim or not rt:
-        raise SystemExit(f"need cosim and coupled_zmq_round_trip in one of {builds} (ninja coupled_zmq_round_trip)")
+    env_builds = [d for d in os.environ.get("COSIM_BUILD_DIRS", "").split(":") if d]
+    builds = a.build or env_builds or [str(ROOT / "build"), str(ROOT / "build-c")]
+    exes = ("cosim", "coupler", "fluid_solver", "solid_solver", "coupled_zmq_round_trip")
+    src = find_bins(exes, builds)
+    if not src:
+        raise SystemExit(f"need {', '.join(exes)} in the bin/ of one of {builds} (ninja coupled_zmq_round_trip)")
     work = Path(a.work)
     work.mkdir(parents=True, exist_ok=True)
     bindir = work / "bin"  # private copies: a rebuild of the tree during the benchmark must not change them
     bindir.mkdir(exist_ok=True)
-    for exe in ("cosim", "coupler", "fluid_solver", "solid_solver"):
-        shutil.copy2(cosim.parent / exe, bindir / exe)
-    shutil.copy2(rt, bindir / rt.name)
-    cosim, rt = bindir / "cosim", bindir / rt.name
-    print(provenance(Path(cosim).parent))
+    for exe in exes:
+        shutil.copy2(src / exe, bindir / exe)
+    cosim, rt = bindir / "cosim", bindir / "coupled_zmq_round_trip"
+    print(f"binaries from {src}; " + provenance(bindir))
     repeat = 1 if a.quick else max(1, a.repeat)
     count = 1000 if a.quick else 3000
     transports = ["ipc"] if a.no_tcp else ["ipc", "tcp"]
@@ -263,74 +299,105 @@ def main():
     print(f"machine: {os.cpu_count()} logical CPUs; load average before: "
           f"{' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
-    results = []
+    results = []  # one per scene, OMP setting, transport and scheme: the repeat with the median comm
+    ratios = []  # one per scene, OMP setting and transport: wall sequential / pipelined
     for name, (scene, faces, quick_sets) in ({} if a.perf_only else SCENES).items():
         for threads in (1, None):
             for tr in transports:
-                reps = []
+                reps = {sc: [] for sc in SCHEMES}
                 for k in range(repeat):
-                    b = bare(rt, faces, tr, count)
-                    out = work / f"{name}_{'omp1' if threads else 'ompdef'}_{tr}_{k}"
-                    r = coupled_run(cosim, scene, out, threads, tr == "tcp", quick_sets if a.quick else [])
-                    geo = min(r["fluid_geometry"], r["fluid_median"])
-                    bw = bare(rt, faces, tr, count, (r["solid_median"], geo, r["fluid_median"] - geo), "protocol")
-                    r.update({"bare": b, "bare_work": bw["protocol"], "work_us": (r["solid_median"], geo,
-                                                                                   r["fluid_median"] - geo)})
-                    reps.append(r)
-                reps.sort(key=lambda x: x["comm"])
-                r = reps[len(reps) // 2]
-                r.update({"scene": name, "threads": "1" if threads else "default", "transport": tr, "faces": faces,
-                          "comm_all": [x["comm"] for x in reps]})
-                results.append(r)
-                print(f"  {name} OMP {r['threads']} {tr}: {r['cycles']} cycles, comm per cycle "
-                      + ", ".join(f"{x * 1e6:.0f}" for x in r["comm_all"]) + " us; bare 64 B round trip "
-                      + ", ".join(f"{x['bare']['small']['median_s'] * 1e6:.0f}" for x in reps) + " us", flush=True)
+                    for scheme in (SCHEMES if k % 2 == 0 else SCHEMES[::-1]):
+                        crit, proto = CRITICAL[scheme], PROTOCOL[scheme]
+                        b = bare(rt, faces, tr, count, patterns=f"small,{crit},{proto}")
+                        out = work / f"{name}_{scheme}_{'omp1' if threads else 'ompdef'}_{tr}_{k}"
+                        r = coupled_run(cosim, scene, out, threads, tr == "tcp", quick_sets if a.quick else [], scheme)
+                        if r["scheme"] != scheme:
+                            raise SystemExit(f"{out}: the fluid ran the {r['scheme']} scheme, not {scheme}")
+                        geo = min(r["fluid_geometry"], r["fluid_median"])
+                        work_us = (r["solid_median"], geo, r["fluid_median"] - geo)
+                        bw = bare(rt, faces, tr, count, work_us, proto)
+                        r.update({"bare": b, "bare_work": bw[proto], "work_us": work_us, "repeat": k})
+                        reps[scheme].append(r)
+                rw = [s["wall"] / p["wall"] for s, p in zip(reps["sequential"], reps["pipelined"])]
+                ratios.append({"scene": name, "threads": "1" if threads else "default", "transport": tr,
+                               "ratios": rw, "ratio": float(np.median(rw))})
+                for scheme in SCHEMES:
+                    rs = sorted(reps[scheme], key=lambda x: x["comm"])
+                    r = rs[len(rs) // 2]
+                    r.update({"scene": name, "scheme": scheme, "threads": "1" if threads else "default",
+                              "transport": tr, "faces": faces, "comm_all": [x["comm"] for x in reps[scheme]]})
+                    results.append(r)
+                    print(f"  {name} {scheme} OMP {r['threads']} {tr}: {r['cycles']} cycles, wall per cycle "
+                          + ", ".join(f"{x['wall'] * 1e6:.0f}" for x in reps[scheme]) + " us, comm per cycle "
+                          + ", ".join(f"{x * 1e6:.0f}" for x in r["comm_all"]) + " us; bare 64 B round trip "
+                          + ", ".join(f"{x['bare']['small']['median_s'] * 1e6:.0f}" for x in reps[scheme]) + " us",
+                          flush=True)
+                print(f"  {name} OMP {ratios[-1]['threads']} {tr}: wall sequential / pipelined "
+                      + ", ".join(f"{x:.2f}" for x in rw), flush=True)
 
     if a.perf_only:
         return perf_part(a, work, cosim, bindir, t_start)
     for r in results:
-        b = r["bare"]
+        b, sc = r["bare"], r["scheme"]
         r["b_small"] = b["small"]["median_s"]
-        r["b_cycle"] = b["cycle"]["median_s"]
-        r["b_proto"] = b["protocol"]["median_s"]
+        r["b_cycle"] = b[CRITICAL[sc]]["median_s"]
+        r["b_proto"] = b[PROTOCOL[sc]]["median_s"]
         r["b_proto_work"] = r["bare_work"]["median_s"]
         r["pbuf"] = b["protobuf"]["median_s"]
-        r["per_ex"] = r["comm"] / EXCHANGES
+        r["exchanges"] = EXCHANGES[sc]
+        r["per_ex"] = r["comm"] / EXCHANGES[sc]
         r["ratio"] = r["per_ex"] / r["b_small"]
         r["ratio_cycle"] = r["comm"] / r["b_cycle"]
+        r["ratio_proto"] = r["comm"] / r["b_proto_work"] if r["b_proto_work"] > 0 else float("nan")
         r["comm_frac"] = r["comm"] / r["wall"]
         r["overhead_frac"] = (r["comm"] + r["coupler"]) / r["wall"]
 
-    print("\n## Coupled cycle per cycle (steady-state means from timing.csv; times in ms)\n")
-    print("| scene | OMP threads | transport | cycles | wall | solid | fluid | coupler | comm | comm % wall | "
-          "overhead % wall | exchanges/cycle | comm/exchange [us] | bare RT 64 B [us] | ratio | "
-          "comm / bare critical path (3 RT, real sizes) |")
-    print("|---" * 16 + "|")
+    print("\n## Coupled cycle per cycle and scheme (steady-state means from timing.csv; times in ms)\n")
+    print("comm = wall - coupler - (solid + fluid) (sequential) or - max(solid, fluid) (pipelined); overhead share "
+          "= (comm + coupler) / wall; exchanges/cycle: sequential 4 as the issue counts them (3 round trips on the "
+          "critical path), pipelined 1 (samples -> states); critical path = bare \"cycle\" (3 RT) or "
+          "\"cycle_pipelined\" (1 RT), real sizes; 3-process cycle = bare \"protocol\" or \"protocol_pipelined\" "
+          "with the solvers' busy loops.\n")
+    print("| scene | scheme | OMP threads | transport | cycles | wall | solid | fluid | coupler | comm | comm % wall | "
+          "overhead share of wall % | exchanges/cycle | comm/exchange [us] | bare RT 64 B [us] | ratio | "
+          "comm / bare critical path (real sizes) | comm / bare 3-process cycle of the scheme |")
+    print("|---" * 18 + "|")
     for r in results:
-        print(f"| {r['scene']} | {r['threads']} | {r['transport']} | {r['cycles']} | {r['wall'] * 1e3:.3f} | "
-              f"{r['solid'] * 1e3:.3f} | {r['fluid'] * 1e3:.3f} | {r['coupler'] * 1e3:.4f} | {r['comm'] * 1e3:.3f} | "
-              f"{100 * r['comm_frac']:.1f} | {100 * r['overhead_frac']:.1f} | {EXCHANGES} | {r['per_ex'] * 1e6:.1f} | "
-              f"{r['b_small'] * 1e6:.1f} | {r['ratio']:.2f} | {r['ratio_cycle']:.2f} |")
+        print(f"| {r['scene']} | {r['scheme']} | {r['threads']} | {r['transport']} | {r['cycles']} | "
+              f"{r['wall'] * 1e3:.3f} | {r['solid'] * 1e3:.3f} | {r['fluid'] * 1e3:.3f} | {r['coupler'] * 1e3:.4f} | "
+              f"{r['comm'] * 1e3:.3f} | {100 * r['comm_frac']:.1f} | {100 * r['overhead_frac']:.1f} | "
+              f"{r['exchanges']} | {r['per_ex'] * 1e6:.1f} | {r['b_small'] * 1e6:.1f} | {r['ratio']:.2f} | "
+              f"{r['ratio_cycle']:.2f} ({CRITICAL_LABEL[r['scheme']]}) | {r['ratio_proto']:.2f} |")
+
+    print("\n## Wall time per cycle, sequential / pipelined (steady state; ratio per repeat, median)\n")
+    print("| scene | OMP threads | transport | wall sequential [ms] | wall pipelined [ms] | sequential / pipelined "
+          "| per repeat |")
+    print("|---" * 7 + "|")
+    for q in ratios:
+        w = {r["scheme"]: r["wall"] for r in results
+             if (r["scene"], r["threads"], r["transport"]) == (q["scene"], q["threads"], q["transport"])}
+        print(f"| {q['scene']} | {q['threads']} | {q['transport']} | {w['sequential'] * 1e3:.3f} | "
+              f"{w['pipelined'] * 1e3:.3f} | {q['ratio']:.2f} | {', '.join(f'{x:.2f}' for x in q['ratios'])} |")
 
     print("\n## Whole-run means from coupler_summary.json (ms per cycle; includes the first cycles and snapshots)\n")
-    print("| scene | OMP threads | transport | wall | solid | fluid | coupler | comm | comm_fraction |")
-    print("|---" * 9 + "|")
+    print("| scene | scheme | OMP threads | transport | wall | solid | fluid | coupler | comm | comm_fraction |")
+    print("|---" * 10 + "|")
     for r in results:
         s = r["summary"]
-        print(f"| {r['scene']} | {r['threads']} | {r['transport']} | {s['wall'] * 1e3:.3f} | {s['solid'] * 1e3:.3f} | "
-              f"{s['fluid'] * 1e3:.3f} | {s['coupler'] * 1e3:.4f} | {s['comm'] * 1e3:.3f} | "
+        print(f"| {r['scene']} | {r['scheme']} | {r['threads']} | {r['transport']} | {s['wall'] * 1e3:.3f} | "
+              f"{s['solid'] * 1e3:.3f} | {s['fluid'] * 1e3:.3f} | {s['coupler'] * 1e3:.4f} | {s['comm'] * 1e3:.3f} | "
               f"{100 * r['comm_fraction_summary']:.1f} % |")
 
-    print("\n## Where comm goes (us per cycle, medians; bare numbers measured next to each run)\n")
-    print("| scene | OMP threads | transport | comm (coupled run) | bare: 3 RT critical path, 2 processes | "
+    print("\n## Where comm goes (us per cycle, medians; bare numbers of the same scheme measured next to each run)\n")
+    print("| scene | scheme | OMP threads | transport | comm (coupled run) | bare: critical path, 2 processes | "
           "bare: whole cycle, 3 processes, 9 messages | same + solver busy loops (solid/sample/advance us) | "
           "protobuf layer (1 process) |")
-    print("|---" * 8 + "|")
+    print("|---" * 9 + "|")
     for r in results:
         w = "/".join(f"{x * 1e6:.0f}" for x in r["work_us"])
-        print(f"| {r['scene']} | {r['threads']} | {r['transport']} | {r['comm_median'] * 1e6:.0f} | "
-              f"{r['b_cycle'] * 1e6:.0f} | {r['b_proto'] * 1e6:.0f} | {r['b_proto_work'] * 1e6:.0f} ({w}) | "
-              f"{r['pbuf'] * 1e6:.0f} |")
+        print(f"| {r['scene']} | {r['scheme']} | {r['threads']} | {r['transport']} | {r['comm_median'] * 1e6:.0f} | "
+              f"{r['b_cycle'] * 1e6:.0f} ({CRITICAL_LABEL[r['scheme']]}) | {r['b_proto'] * 1e6:.0f} | "
+              f"{r['b_proto_work'] * 1e6:.0f} ({w}) | {r['pbuf'] * 1e6:.0f} |")
 
     print("\n## Targets\n")
     for r in results:
@@ -338,11 +405,12 @@ def main():
             continue
         f_ok = r["overhead_frac"] < TARGET_FRACTION
         q_ok = r["ratio"] <= TARGET_RATIO
-        print(f"- overhead_128, OMP {r['threads']}, {r['transport']}: overhead (comm + coupler) "
+        print(f"- overhead_128, {r['scheme']}, OMP {r['threads']}, {r['transport']}: overhead (comm + coupler) "
               f"{100 * r['overhead_frac']:.1f} % of wall (target < {100 * TARGET_FRACTION:.0f} %): "
-              f"{'met' if f_ok else 'NOT met'}; comm per exchange {r['ratio']:.2f}x the bare 64 B round trip "
-              f"(target <= {TARGET_RATIO:g}x): {'met' if q_ok else 'NOT met'}; {r['ratio_cycle']:.2f}x the bare "
-              f"critical path with the real message sizes")
+              f"{'met' if f_ok else 'NOT met'}; comm per exchange ({r['exchanges']} per cycle) {r['ratio']:.2f}x the "
+              f"bare 64 B round trip (target <= {TARGET_RATIO:g}x): {'met' if q_ok else 'NOT met'}; "
+              f"{r['ratio_cycle']:.2f}x the bare critical path with the real message sizes "
+              f"({CRITICAL_LABEL[r['scheme']]})")
 
     if a.perf:
         perf_part(a, work, cosim, bindir, None)
@@ -352,31 +420,55 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
 
-    fig, axes = plt.subplots(1, len(SCENES), figsize=(6.5 * len(SCENES), 5.5), squeeze=False)
+    fig, axes = plt.subplots(1, len(SCENES), figsize=(7.5 * len(SCENES), 5.8), squeeze=False)
     colours = {"solid": "#1f77b4", "fluid": "#2ca02c", "coupler": "#9467bd", "comm": "#d62728"}
+    width = 0.38
     for ax, name in zip(axes[0], SCENES):
-        rs = [r for r in results if r["scene"] == name]
-        x = np.arange(len(rs))
-        bottom = np.zeros(len(rs))
-        for c in ("solid", "fluid", "coupler", "comm"):
-            v = np.array([r[c] * 1e3 for r in rs])
-            ax.bar(x, v, bottom=bottom, color=colours[c], label=c, width=0.6)
-            bottom += v
-        for i, r in enumerate(rs):
-            base = bottom[i] - r["comm"] * 1e3
-            ax.plot([i - 0.3, i + 0.3], [base + r["b_cycle"] * 1e3] * 2, "k--", lw=1.2,
-                    label="comm of a bare critical path (3 RT)" if i == 0 else None)
-            ax.plot([i - 0.3, i + 0.3], [base + r["b_proto_work"] * 1e3] * 2, "k:", lw=1.5,
-                    label="comm of the bare 3-process cycle with busy loops" if i == 0 else None)
-            ax.text(i, bottom[i], f"{100 * r['overhead_frac']:.0f}%", ha="center", va="bottom", fontsize=8)
-        ax.set_xticks(x)
-        ax.set_xticklabels([f"OMP {r['threads']}\n{r['transport']}" for r in rs], fontsize=8)
+        configs = [(r["threads"], r["transport"]) for r in results if r["scene"] == name and r["scheme"] == SCHEMES[0]]
+        top, ticks, labels = 0.0, [], []
+        for j, cfg in enumerate(configs):
+            for i, scheme in enumerate(SCHEMES):
+                r = next(x for x in results if x["scene"] == name and x["scheme"] == scheme
+                         and (x["threads"], x["transport"]) == cfg)
+                xc = j + (i - 0.5) * (width + 0.02)
+                # Bars add up to the wall time: sequential, solid + fluid + coupler + comm; pipelined, the longer
+                # solver + coupler + comm, the shorter (overlapped) solver hatched inside the longer one.
+                if scheme == "pipelined":
+                    long_, short = ("fluid", "solid") if r["fluid"] >= r["solid"] else ("solid", "fluid")
+                    parts = [long_, "coupler", "comm"]
+                else:
+                    parts = ["solid", "fluid", "coupler", "comm"]
+                bottom = 0.0
+                for c in parts:
+                    v = r[c] * 1e3
+                    ax.bar(xc, v, bottom=bottom, color=colours[c], width=width)
+                    bottom += v
+                if scheme == "pipelined":
+                    ax.bar(xc - width / 4, r[short] * 1e3, bottom=0.0, width=width / 2, fill=False,
+                           edgecolor=colours[short], hatch="///", lw=0.8)
+                base = bottom - r["comm"] * 1e3
+                ax.plot([xc - width / 2, xc + width / 2], [base + r["b_cycle"] * 1e3] * 2, "k--", lw=1.2)
+                ax.plot([xc - width / 2, xc + width / 2], [base + r["b_proto_work"] * 1e3] * 2, "k:", lw=1.5)
+                ax.text(xc, bottom, f"{100 * r['overhead_frac']:.0f}%", ha="center", va="bottom", fontsize=7)
+                top = max(top, bottom)
+                ticks.append(xc)
+                labels.append(f"{'pipe' if scheme == 'pipelined' else 'seq'}\nOMP {cfg[0]}\n{cfg[1]}")
+        ax.set_xticks(ticks)
+        ax.set_xticklabels(labels, fontsize=7)
         ax.set_ylabel("ms per cycle")
-        ax.set_ylim(0, bottom.max() * 1.35)
-        ax.set_title(f"{name} ({rs[0]['faces']} interface faces); % = overhead of wall", fontsize=10)
-        ax.legend(fontsize=7, loc="upper left")
-    fig.suptitle("Coupled cycle: solver work, coupler work and communication per cycle (steady state)")
+        ax.set_ylim(0, top * 1.4)
+        ax.set_title(f"{name} ({SCENES[name][1]} interface faces); % = overhead share of wall", fontsize=10)
+        handles = [Patch(color=colours[c], label=c) for c in ("solid", "fluid", "coupler", "comm")]
+        handles += [Patch(fill=False, hatch="///", edgecolor="grey", label="overlapped solver work (pipelined)"),
+                    plt.Line2D([], [], color="k", ls="--", lw=1.2,
+                               label="comm of the bare critical path (seq 3 RT, pipe 1 RT)"),
+                    plt.Line2D([], [], color="k", ls=":", lw=1.5,
+                               label="comm of the bare 3-process cycle of the scheme with busy loops")]
+        ax.legend(handles=handles, fontsize=7, loc="upper left")
+    fig.suptitle("Coupled cycle per scheme (pipe = pipelined, seq = sequential): solver work, coupler work and "
+                 "communication per cycle (steady state)", fontsize=11)
     fig.tight_layout()
     RESULTS.mkdir(parents=True, exist_ok=True)
     png = RESULTS / ("coupled_overhead_quick.png" if a.quick else "coupled_overhead.png")

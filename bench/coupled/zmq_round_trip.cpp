@@ -12,6 +12,8 @@
 //                decision -> faces, faces -> samples, states -> proposal,
 //              with the byte sizes of the real protobuf envelopes (encoded here with common/coupling/wire.h);
 //              reported per cycle and per round trip.
+//   cycle_pipelined  the pipelined cycle's critical path when the fluid is the slower solver: its one round trip
+//              samples -> states (real sizes); decision and faces wait in the fluid's queue during its advance.
 //   workW      64 B round trips where the echo side first computes W us (--work, default 100,1000), minus W:
 //              the latency when the waiting side has been idle for W, as in a coupled cycle where every
 //              process waits while another one works.
@@ -19,12 +21,18 @@
 //              messages of a cycle (including those off the critical path: DtDecision to the fluid,
 //              InterfaceStates to the solid, the solid's DtProposal), raw bytes of the real sizes; optional
 //              busy work of the solvers (--protocol-work), subtracted from the reported time.
+//   protocol_pipelined  the same nine messages in the pipelined order (coupling.scheme: pipelined, the default;
+//              docs/protocol.md "Schemes"): the solid sends its DtProposal right after its faces, the fluid right
+//              after its samples, so the coupler sends the next DtDecision as soon as it has sent the states and
+//              the fluid's advance overlaps the solid's next step. The work subtracted is what the coupler's
+//              CycleTiming::comm subtracts for this scheme, max(solid, fluid sampling + advance).
 // Plus the in-process cost of the protobuf layer per cycle (copy + encode on the sender, decode + validate +
 // from_pb on the receiver, for the six critical-path messages), part of which the coupled cycle's "comm"
 // contains (encode, decode and validate fall between the busy intervals).
 //
 // Usage: coupled_zmq_round_trip [--faces N] [--count N] [--warmup N] [--transport ipc|tcp|both]
 //                               [--work US,US,...] [--protocol-work S,FS,FA] [--patterns LIST] [--json]
+// LIST: any of small,cycle,cycle_pipelined,work,protocol,protocol_pipelined (default: all).
 // Prints a table; with --json one JSON object per line instead (read by run_overhead.py).
 #include <fmt/format.h>
 #include <sys/wait.h>
@@ -262,17 +270,26 @@ std::vector<double> measure(const std::string& endpoint, const std::vector<Pair>
 
 // The whole message pattern of a coupled cycle between three processes, as coupler/cycle.cpp and the two
 // solver loops exchange it (docs/protocol.md), with raw bytes of the real sizes and no protobuf: the parent is
-// the coupler (ROUTER, bound), two children are the solid and the fluid (DEALER, connected). Per cycle:
+// the coupler (ROUTER, bound), two children are the solid and the fluid (DEALER, connected). Per cycle,
+// sequential order:
 //   coupler -> fluid, solid: DtDecision; solid works work[0] us, -> coupler: InterfaceFaces;
 //   coupler -> fluid: InterfaceFaces; fluid works work[1] us (sampling), -> coupler: FluidSamples;
 //   coupler -> fluid, solid: InterfaceStates; solid -> coupler: DtProposal; fluid works work[2] us (advance),
 //   -> coupler: DtProposal.
-// Returns per-cycle seconds minus the critical-path work (work[0] + work[1] + work[2]).
+// Pipelined order:
+//   coupler -> fluid, solid: DtDecision; solid works work[0] us, -> coupler: InterfaceFaces, DtProposal;
+//   coupler -> fluid: InterfaceFaces; fluid works work[1] us (sampling), -> coupler: FluidSamples, DtProposal;
+//   coupler -> fluid, solid: InterfaceStates; the coupler has both proposals and sends the next DtDecision at
+//   once, while the fluid works work[2] us (advance) after the states: the solid's next step overlaps it, and
+//   the next faces wait in the fluid's queue. Proposals carry their own tag, so that the coupler can count them
+//   whenever they arrive (as the coupler's per-solver inboxes keep them until expected).
+// Returns per-cycle seconds (DtDecision sent .. the next DtDecision sent, as the coupler's wall) minus the work
+// CycleTiming::comm subtracts: sequential work[0] + work[1] + work[2]; pipelined max(work[0], work[1] + work[2]).
 struct ProtocolSizes {
   std::size_t decision, faces, samples, states_fluid, states_solid, proposal;
 };
 
-enum : std::uint64_t { kMsgData = 1, kMsgStop = 2 };
+enum : std::uint64_t { kMsgData = 1, kMsgStop = 2, kMsgProposal = 3 };
 
 std::string tagged(std::size_t size, std::uint64_t tag) {
   std::string r(std::max<std::size_t>(size, 8), 'p');
@@ -280,7 +297,8 @@ std::string tagged(std::size_t size, std::uint64_t tag) {
   return r;
 }
 
-[[noreturn]] void protocol_peer(bool fluid, int pipe_r, const ProtocolSizes& z, const std::array<int, 3>& work) {
+[[noreturn]] void protocol_peer(bool fluid, bool pipelined, int pipe_r, const ProtocolSizes& z,
+                                const std::array<int, 3>& work) {
   int code = 0;
   try {
     std::string ep;
@@ -299,16 +317,28 @@ std::string tagged(std::size_t size, std::uint64_t tag) {
       return tag != kMsgStop;
     };
     const std::string faces = tagged(z.faces, kMsgData), samples = tagged(z.samples, kMsgData),
-                      proposal = tagged(z.proposal, kMsgData);
+                      proposal = tagged(z.proposal, pipelined ? kMsgProposal : kMsgData);
     for (;;) {
       if (!recv()) break;  // DtDecision or stop
-      if (fluid) {
+      if (fluid && pipelined) {
+        recv();  // InterfaceFaces
+        busy_work(static_cast<std::uint64_t>(work[1]));
+        d.send({samples}, 5000);
+        d.send({proposal}, 5000);  // from t^n, before the states
+        recv();                    // InterfaceStates
+        busy_work(static_cast<std::uint64_t>(work[2]));  // the next DtDecision and faces queue up meanwhile
+      } else if (fluid) {
         recv();  // InterfaceFaces
         busy_work(static_cast<std::uint64_t>(work[1]));
         d.send({samples}, 5000);
         recv();  // InterfaceStates
         busy_work(static_cast<std::uint64_t>(work[2]));
         d.send({proposal}, 5000);
+      } else if (pipelined) {
+        busy_work(static_cast<std::uint64_t>(work[0]));
+        d.send({faces}, 5000);
+        d.send({proposal}, 5000);
+        recv();  // InterfaceStates
       } else {
         busy_work(static_cast<std::uint64_t>(work[0]));
         d.send({faces}, 5000);
@@ -323,8 +353,8 @@ std::string tagged(std::size_t size, std::uint64_t tag) {
   std::_Exit(code);
 }
 
-std::vector<double> measure_protocol(const std::string& endpoint, const ProtocolSizes& z, const std::array<int, 3>& work,
-                                     int count, int warmup) {
+std::vector<double> measure_protocol(const std::string& endpoint, bool pipelined, const ProtocolSizes& z,
+                                     const std::array<int, 3>& work, int count, int warmup) {
   int pf[2], ps[2];
   if (::pipe(pf) != 0 || ::pipe(ps) != 0) throw std::runtime_error("pipe");
   std::fflush(nullptr);
@@ -333,14 +363,14 @@ std::vector<double> measure_protocol(const std::string& endpoint, const Protocol
     ::close(pf[1]);
     ::close(ps[0]);
     ::close(ps[1]);
-    protocol_peer(true, pf[0], z, work);
+    protocol_peer(true, pipelined, pf[0], z, work);
   }
   const pid_t spid = ::fork();
   if (spid == 0) {
     ::close(ps[1]);
     ::close(pf[0]);
     ::close(pf[1]);
-    protocol_peer(false, ps[0], z, work);
+    protocol_peer(false, pipelined, ps[0], z, work);
   }
   ::close(pf[0]);
   ::close(ps[0]);
@@ -363,15 +393,33 @@ std::vector<double> measure_protocol(const std::string& endpoint, const Protocol
     }
     const std::string decision = tagged(z.decision, kMsgData), faces = tagged(z.faces, kMsgData),
                       states_f = tagged(z.states_fluid, kMsgData), states_s = tagged(z.states_solid, kMsgData);
+    int proposals = 0;  // pipelined: DtProposals received in this cycle, whenever they came
     const auto expect = [&](const std::string& from) {
-      if (!r.receive(in, 20000) || in.size() != 2 || in[0] != from) throw std::runtime_error("protocol: unexpected");
+      for (;;) {
+        if (!r.receive(in, 20000) || in.size() != 2 || in[1].size() < 8)
+          throw std::runtime_error("protocol: no message");
+        std::uint64_t tag = 0;
+        std::memcpy(&tag, in[1].data(), 8);
+        if (pipelined && tag == kMsgProposal && (in[0] == fid || in[0] == sid)) {
+          ++proposals;
+          continue;
+        }
+        if (in[0] != from) throw std::runtime_error("protocol: unexpected");
+        return;
+      }
     };
     const auto send = [&](const std::string& to, const std::string& m) {
       if (!r.send({to, m}, 5000)) throw std::runtime_error("protocol: cannot send");
     };
-    const double work_s = 1e-6 * (work[0] + work[1] + work[2]);
+    const double work_s = 1e-6 * (pipelined ? std::max(work[0], work[1] + work[2]) : work[0] + work[1] + work[2]);
+    // One clock reading per cycle, when its DtDecision goes out: a cycle lasts until the next one's (the coupler's
+    // wall), so that nothing between two cycles is lost (in the pipelined order the fluid advances there).
+    double t_open = 0;
     for (int i = 0; i < warmup + count; ++i) {
       const double t0 = now_s();
+      if (i > warmup) out.push_back(t0 - t_open - work_s);
+      t_open = t0;
+      proposals = 0;
       send(fid, decision);
       send(sid, decision);
       expect(sid);  // faces
@@ -379,12 +427,14 @@ std::vector<double> measure_protocol(const std::string& endpoint, const Protocol
       expect(fid);  // samples
       send(fid, states_f);
       send(sid, states_s);
-      for (int k = 0; k < 2; ++k) {  // both proposals, in either order
-        if (!r.receive(in, 20000) || in.size() != 2 || (in[0] != fid && in[0] != sid))
+      for (; proposals < 2; ++proposals) {  // both proposals, in either order (pipelined: those not yet counted)
+        std::uint64_t tag = 0;
+        if (r.receive(in, 20000) && in.size() == 2 && in[1].size() >= 8) std::memcpy(&tag, in[1].data(), 8);
+        if ((in[0] != fid && in[0] != sid) || tag != (pipelined ? kMsgProposal : kMsgData))
           throw std::runtime_error("protocol: no proposal");
       }
-      if (i >= warmup) out.push_back(now_s() - t0 - work_s);
     }
+    out.push_back(now_s() - t_open - work_s);  // the last cycle: until its last proposal
     send(fid, tagged(8, kMsgStop));
     send(sid, tagged(8, kMsgStop));
   }
@@ -442,7 +492,8 @@ struct Pattern {
 
 int main(int argc, char** argv) {
   int faces = 128, count = 5000, warmup = 500;
-  std::string transport = "both", work_list = "100,1000", protocol_work = "0,0,0", which = "small,cycle,work,protocol";
+  std::string transport = "both", work_list = "100,1000", protocol_work = "0,0,0",
+              which = "small,cycle,cycle_pipelined,work,protocol,protocol_pipelined";
   bool json = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -464,8 +515,8 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: %s [--faces N] [--count N] [--warmup N] [--transport ipc|tcp|both] [--work US,US,...] "
-                   "[--protocol-work SOLID_US,FLUID_SAMPLE_US,FLUID_ADVANCE_US] [--patterns small,cycle,work,protocol] "
-                   "[--json]\n",
+                   "[--protocol-work SOLID_US,FLUID_SAMPLE_US,FLUID_ADVANCE_US] "
+                   "[--patterns small,cycle,cycle_pipelined,work,protocol,protocol_pipelined] [--json]\n",
                    argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
     }
@@ -489,6 +540,13 @@ int main(int argc, char** argv) {
                          {"faces -> samples", b_faces, b_samp},
                          {"states -> proposal", b_stf, b_prop}},
                         count});
+    // Pipelined scheme, fluid the slower solver: the only round trip on its path (the next decision and faces
+    // are already in its queue when it has advanced).
+    if (wanted("cycle_pipelined"))
+      patterns.push_back({"cycle_pipelined",
+                          "pipelined cycle's round trip samples -> states (real sizes), per cycle",
+                          {{"samples -> states", b_samp, b_stf}},
+                          count});
     // The echo side works W us before each reply while the measuring side waits (as the coupler waits for a
     // solver): round trip minus W shows what waking a waiting process costs.
     for (int w : parse_list(work_list)) {
@@ -541,23 +599,27 @@ int main(int argc, char** argv) {
         }
         std::fflush(stdout);
       }
-      if (wanted("protocol")) {
+      for (const bool pipelined : {false, true}) {
+        const std::string name = pipelined ? "protocol_pipelined" : "protocol";
+        if (!wanted(name)) continue;
         const auto pw = parse_list(protocol_work);
         if (pw.size() != 3) throw std::runtime_error("--protocol-work: three numbers");
         const std::array<int, 3> w{pw[0], pw[1], pw[2]};
         const ProtocolSizes z{b_dec, b_faces, b_samp, b_stf, m.bytes(m.states_solid), b_prop};
         const int n = std::max(100, std::min(count, static_cast<int>(3e6 / (w[0] + w[1] + w[2] + 300))));
-        const Stats s = stats(measure_protocol(ep, z, w, n, std::min(warmup, n / 5)));
+        const Stats s = stats(measure_protocol(ep, pipelined, z, w, n, std::min(warmup, n / 5)));
+        const int subtracted = pipelined ? std::max(w[0], w[1] + w[2]) : w[0] + w[1] + w[2];
         if (json) {
-          std::printf("{\"transport\": \"%s\", \"pattern\": \"protocol\", \"faces\": %d, \"work_us\": [%d, %d, %d], "
-                      "\"count\": %d, \"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, \"p90_s\": %.9e, "
-                      "\"min_s\": %.9e}\n",
-                      tr.c_str(), faces, w[0], w[1], w[2], n, s.mean, s.median, s.p10, s.p90, s.min);
+          std::printf("{\"transport\": \"%s\", \"pattern\": \"%s\", \"faces\": %d, \"work_us\": [%d, %d, %d], "
+                      "\"work_s\": %.9e, \"count\": %d, \"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, "
+                      "\"p90_s\": %.9e, \"min_s\": %.9e}\n",
+                      tr.c_str(), name.c_str(), faces, w[0], w[1], w[2], 1e-6 * subtracted, n, s.mean, s.median, s.p10,
+                      s.p90, s.min);
         } else {
-          std::printf("| %s | whole cycle, 3 processes, 9 messages (work %d/%d/%d us subtracted) | %.1f | %.1f | %.1f | "
-                      "%.1f | %.1f |\n",
-                      tr.c_str(), w[0], w[1], w[2], s.mean * 1e6, s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6,
-                      s.min * 1e6);
+          std::printf("| %s | whole cycle, 3 processes, 9 messages, %s order (work %d/%d/%d us: %d us subtracted) | "
+                      "%.1f | %.1f | %.1f | %.1f | %.1f |\n",
+                      tr.c_str(), pipelined ? "pipelined" : "sequential", w[0], w[1], w[2], subtracted, s.mean * 1e6,
+                      s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6, s.min * 1e6);
         }
         std::fflush(stdout);
       }
