@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 #include <string>
 #include <memory>
@@ -22,10 +23,13 @@ namespace cosim::fluid {
 // `wall_normal_speed` (coupled runs): per Surface face, the interface normal velocity u_I . n of the
 // coupler (paper eq. 22); it replaces the normal component of the surface velocity at the ghosts'
 // boundary intercepts. Null: the surface velocity as it is (prescribed motion).
+// `wall_pressure` (coupled runs): per Surface face, 2 values (phase 0, phase 1): the coupler's p_I, from which
+// the ghost pressures are extrapolated (ghost_fill.h). Null: ghosts copy the image point's pressure.
 template <int DIM>
 EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
                                 const embedded::EmbeddedGeometry<DIM>& geo,
-                                const std::vector<double>* wall_normal_speed = nullptr) {
+                                const std::vector<double>* wall_normal_speed = nullptr,
+                                const std::vector<double>* wall_pressure = nullptr) {
   EmbeddedState e;
   e.active = true;
   e.kind = geo.category;
@@ -42,6 +46,10 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
       double vn = 0;
       for (int d = 0; d < 3; ++d) vn += r.wall_velocity[d] * r.normal[d];
       for (int d = 0; d < 3; ++d) r.wall_velocity[d] += (un - vn) * r.normal[d];
+    }
+    if (wall_pressure && ip.face >= 0) {
+      for (int k = 0; k < 2; ++k) r.wall_pressure[k] = (*wall_pressure)[2 * static_cast<std::size_t>(ip.face) + k];
+      r.has_wall_pressure = std::isfinite(r.wall_pressure[0]);
     }
     r.distance = -ip.phi;
     r.image_distance = ip.image_distance;

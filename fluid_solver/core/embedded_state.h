@@ -26,6 +26,10 @@ struct GhostRecord {
   int stencil_size = 0;                     // flow cells used at the image point
   std::array<std::size_t, 8> stencil{};     // padded indices
   std::array<double, 8> weights{};          // sum to 1
+  // Interface pressure p_I per phase at the boundary intercept (coupled runs: the coupler's, paper step 5
+  // "p_* = p_I"); when present, the ghost pressure is extrapolated through the wall from it (ghost_fill.h).
+  bool has_wall_pressure = false;
+  std::array<double, 2> wall_pressure{0, 0};  // [Pa], per phase
 };
 
 // A grid face between a flow cell and a ghost/solid-cut cell along direction D (paper steps 5-6).

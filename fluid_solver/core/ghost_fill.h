@@ -3,15 +3,25 @@
 // keeps the interpolated tangential part and its normal part relative to the wall is extrapolated
 // linearly through the wall (u_G,n - u_w,n = -d_G/(L - d_G) (u_IP,n - u_w,n); the mirror image
 // point L = 2 d_G gives the reflection 2 u_w,n - u_IP,n), per phase.
+// Where the wall pressure p_I is known (coupled runs), the pressure is extrapolated through the wall the
+// same way, p_G = p_IP - L/(L - d_G) (p_IP - p_I), and the density along the isentrope of the image point:
+// an accelerating wall (dp/dn = -rho a_n, Euler's equation) or a curved one (dp/dn = rho u_t^2 / R) has a
+// pressure gradient at the wall that the even copy p_G = p_IP would remove, a first-order error at the
+// boundary. p_G + p_inf is kept within [1/2, 2] x (p_IP + p_inf), so a strong wave at the wall cannot make
+// the ghost inadmissible.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
+#include "common/eos/stiffened_gas.h"
 #include "fluid_solver/core/embedded_state.h"
 #include "fluid_solver/core/layout.h"
 
 namespace cosim::fluid {
 
 template <int DIM, int NP>
-void fill_ghost_cells(const EmbeddedState& e, FieldArray& W) {
+void fill_ghost_cells(const EmbeddedState& e, FieldArray& W, const eos::StiffenedGas* eos) {
   using Lay = Layout<DIM, NP>;
   for (const GhostRecord& g : e.ghosts) {
     if (g.stencil_size == 0) continue;  // no flow cell near the image point: keep the last state
@@ -24,6 +34,12 @@ void fill_ghost_cells(const EmbeddedState& e, FieldArray& W) {
       double un = 0;
       for (int d = 0; d < DIM; ++d) un += (v[Lay::vel(k, d)] - g.wall_velocity[d]) * g.normal[d];
       for (int d = 0; d < DIM; ++d) v[Lay::vel(k, d)] -= factor * un * g.normal[d];
+      if (g.has_wall_pressure) {
+        const double pinf = eos[k].pinf, pip = v[Lay::pres(k)] + pinf;
+        const double pg = std::clamp(pip - factor * (pip - (g.wall_pressure[k] + pinf)), 0.5 * pip, 2.0 * pip);
+        v[Lay::rho(k)] *= std::pow(pg / pip, 1.0 / eos[k].gamma);
+        v[Lay::pres(k)] = pg - pinf;
+      }
     }
     for (int q = 0; q < Lay::kPrim; ++q) W.var(q)[g.cell] = v[q];
   }

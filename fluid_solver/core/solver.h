@@ -283,7 +283,7 @@ class Solver final : public FluidSimulation {
     compute_primitives(U_);
     primitives_valid_ = false;
     bc_.fill(W_);
-    if (emb_.active) fill_ghost_cells<DIM, NP>(emb_, W_);
+    if (emb_.active) fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
     residual();
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];

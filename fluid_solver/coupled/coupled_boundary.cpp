@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "fluid_solver/core/embedded_bodies.h"
@@ -20,7 +21,8 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   explicit CoupledBoundaryImpl(FluidSimulation& sim)
       : sim_(sim),
         g_(sim.scene().cells, sim.scene().lower, sim.scene().upper),
-        second_order_(sim.scene().embedded.second_order) {
+        second_order_(sim.scene().embedded.second_order),
+        ghost_wall_pressure_(sim.scene().embedded.ghost_pressure_from_interface) {
     opt_.band_cells = sim.scene().embedded.band;
   }
 
@@ -57,9 +59,16 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       face_speed_[f] = a > 0 ? u / a : 0.0;
     }
     surface_speed_.resize(surface_.source_face.size());
-    for (std::size_t sf = 0; sf < surface_.source_face.size(); ++sf)
-      surface_speed_[sf] = face_speed_[static_cast<std::size_t>(surface_.source_face[sf])];
-    sim_.set_embedded(to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_), second_order_);
+    surface_pressure_.assign(2 * surface_.source_face.size(), 0.0);
+    for (std::size_t sf = 0; sf < surface_.source_face.size(); ++sf) {
+      const auto f = static_cast<std::size_t>(surface_.source_face[sf]);
+      surface_speed_[sf] = face_speed_[f];
+      for (int k = 0; k < np; ++k)  // NaN: no fluid next to the face, no wall pressure for its ghosts
+        surface_pressure_[2 * sf + k] = samples_.wetted[f] ? st.pressure[f * np + k] : std::nan("");
+    }
+    sim_.set_embedded(to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_,
+                                             ghost_wall_pressure_ ? &surface_pressure_ : nullptr),
+                      second_order_);
   }
 
   std::string segments_csv() const override { return fluid::segments_csv<DIM>(geo_); }
@@ -69,11 +78,12 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   FluidSimulation& sim_;
   Grid<DIM> g_;
   bool second_order_;
+  bool ghost_wall_pressure_;
   embedded::GeometryOptions opt_;
   embedded::EmbeddedGeometry<DIM> geo_;
   InterfaceSurface surface_;
   coupling::FluidSamples samples_;
-  std::vector<double> face_speed_, surface_speed_;
+  std::vector<double> face_speed_, surface_speed_, surface_pressure_;
   double geometry_seconds_ = 0;
 };
 

@@ -138,7 +138,10 @@ TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
   const double worst = trajectory_difference(a, b).worst;
   std::printf("[ measured ] Python piston vs solid_solver: max |dx| = %.3e m over %zu cycles\n", worst, b.size());
-  EXPECT_LT(worst, 0.005 * 0.7177);  // 0.5% of the amplitude (the step sequences differ slightly)
+  // 0.5% of the amplitude: the step sequences differ slightly, and the ghost cells in the corner rows, as far
+  // from the piston's end face as from its side face on the channel wall, take either face's wall pressure
+  // (4 faces here, 12 element faces from solid_solver).
+  EXPECT_LT(worst, 0.005 * 0.7177);
   EXPECT_TRUE(fs::exists(py / "solid" / "piston.csv"));
 }
 
@@ -179,9 +182,12 @@ TEST(CoupledPiston, LightPistonSmoothWithImpedanceConditionsOnly) {
 
 // Sub-cycling: the light gas piston's stable step is 5x smaller than the fluid's; with up to 10 solid steps per
 // coupled cycle (interface pressure and velocity held) the coupled cycles drop accordingly and the piston's
-// first stroke (20 ms) stays within 10% of its travel of the run without sub-cycling.
+// first stroke (20 ms) stays within 4% of its travel of the run without sub-cycling (2.6%). Characteristic conditions
+// (consistent in the step, README): the impedance weights without their last terms change with the step,
+// so there the two runs differ by 12% of the travel.
 TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
-  const std::string end = " --set coupling.time.end=0.02 --set coupling.output.interval=0.01";
+  const std::string end =
+      " --set coupling.time.end=0.02 --set coupling.output.interval=0.01 --set coupling.mode=characteristic";
   const fs::path& plain = run_once("piston_light_2d", end);
   const fs::path& sub = run_once("piston_light_2d", end + " --set solid.numerics.max_subcycles=10");
   const History a = read_history(plain), b = read_history(sub);
@@ -190,7 +196,7 @@ TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
               b.size(), a.size(), worst, travel);
   EXPECT_LT(b.size() * 3, a.size());
   EXPECT_GT(travel, 0.3);
-  EXPECT_LT(worst, 0.1 * travel);
+  EXPECT_LT(worst, 0.04 * travel);
 }
 
 // The 1D equivalent (configs/piston_1d.yaml): a 1D fluid grid whose embedded boundary is the two end points
