@@ -7,7 +7,9 @@
 //              `ghost_layers` cells (Chebyshev distance, the MUSCL reach of the solver)
 //   solid      the rest of the body (no work).
 // Zero convention: a centre with phi_C = 0 is a flow cell ("the surface belongs to the fluid");
-// a node with phi_N = 0 cuts nothing by itself (a cell is cut only by a strict sign change).
+// a node with phi_N = 0 cuts nothing by itself (a cell is cut only by a strict sign change), where zero
+// means |phi_N| <= 1e-10 dx, the tolerance of clip.h: a wall on a grid line up to round-off (0.3 against
+// 6 x 0.05) touches the nodes of the line and cuts the cells on its solid side only.
 // Cells owning an interface piece without a strict sign change are promoted to fluid-cut /
 // solid-cut by the side of their centre: a body vertex poking into a cell between its nodes, and
 // a wall lying exactly on a grid line, whose pieces belong to the cells on its solid side
@@ -16,6 +18,7 @@
 // Work: the band cells only; everything outside the band was set by the level-set row fill.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "fluid_solver/core/embedded_state.h"
@@ -38,6 +41,9 @@ CategoryCounts categorize(const LevelSet<DIM>& centres, const LevelSet<DIM>& nod
   CategoryCounts counts;
   const Lattice<DIM>& C = centres.lattice;
   const Lattice<DIM>& N = nodes.lattice;
+  double zero = C.dx[0];
+  for (std::size_t d = 1; d < static_cast<std::size_t>(DIM); ++d) zero = std::min(zero, C.dx[d]);
+  zero *= 1e-10;
   for (const auto& b : centres.band) {
     const auto I = C.ijk(b.index);
     bool some_fluid_node = false, some_solid_node = false;  // strictly > 0 / < 0
@@ -45,8 +51,8 @@ CategoryCounts categorize(const LevelSet<DIM>& centres, const LevelSet<DIM>& nod
       for (int bb = 0; bb < (DIM > 1 ? 2 : 1); ++bb)
         for (int a = 0; a < 2; ++a) {
           const double pn = nodes.phi[N.index(I[0] + a, I[1] + bb, I[2] + c)];
-          some_solid_node = some_solid_node || pn < 0;
-          some_fluid_node = some_fluid_node || pn > 0;
+          some_solid_node = some_solid_node || pn < -zero;
+          some_fluid_node = some_fluid_node || pn > zero;
         }
     if (centres.phi[b.index] >= 0) category[b.index] = some_solid_node ? kFluidCut : kFluid;
     else category[b.index] = some_fluid_node ? kSolidCut : kSolid;

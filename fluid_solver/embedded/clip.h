@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "fluid_solver/embedded/lattice.h"
@@ -26,16 +27,19 @@ struct InterfaceSegment {
 
 namespace detail {
 
-// Sutherland-Hodgman: keeps the part of the convex polygon `in` with sign*(x_d - plane) <= 0.
-inline void clip_against(std::vector<Vec3>& in, std::vector<Vec3>& out, std::size_t d, double plane, double sign) {
+// Sutherland-Hodgman: keeps the part of the convex polygon `in` with sign*(x_d - plane) <= tol. Points within
+// tol of the plane count as on it: a face that lies in a cell face up to round-off (a moving body's wall that
+// arrives on a grid line) is kept whole by both neighbours, and owns_piece() gives it to one.
+inline void clip_against(std::vector<Vec3>& in, std::vector<Vec3>& out, std::size_t d, double plane, double sign,
+                         double tol) {
   out.clear();
   const std::size_t m = in.size();
   for (std::size_t k = 0; k < m; ++k) {
     const Vec3& p = in[k];
     const Vec3& q = in[(k + 1) % m];
     const double fp = sign * (p[d] - plane), fq = sign * (q[d] - plane);
-    if (fp <= 0) out.push_back(p);
-    if ((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) {
+    if (fp <= tol) out.push_back(p);
+    if ((fp < -tol && fq > tol) || (fp > tol && fq < -tol)) {
       Vec3 x = p + (fp / (fp - fq)) * (q - p);
       x[d] = plane;  // exactly on the plane
       out.push_back(x);
@@ -109,7 +113,7 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
       double measure = 0;
       std::array<double, 3> bary{1, 0, 0};
       if constexpr (DIM == 1) {
-        if (a[0] < blo[0] || a[0] > bhi[0]) return;
+        if (a[0] < blo[0] - tol[0] || a[0] > bhi[0] + tol[0]) return;
         poly.assign(1, a);
         c = a;
         measure = 1;
@@ -118,8 +122,10 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
         const Vec3 delta = b - a;
         double t0 = 0, t1 = 1;
         for (std::size_t d = 0; d < 2; ++d) {
-          if (delta[d] == 0) {
-            if (a[d] < blo[d] || a[d] > bhi[d]) return;
+          // Along a grid line up to round-off (a moving wall that arrives on it): in both cells, owns_piece()
+          // decides; otherwise the piece would fall between them and the cut cell would be lost.
+          if (std::abs(delta[d]) <= tol[d]) {
+            if (std::max(a[d], b[d]) < blo[d] - tol[d] || std::min(a[d], b[d]) > bhi[d] + tol[d]) return;
             continue;
           }
           double ta = (blo[d] - a[d]) / delta[d], tb = (bhi[d] - a[d]) / delta[d];
@@ -136,8 +142,8 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
       } else {
         poly = {a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]};
         for (std::size_t d = 0; d < 3 && poly.size() >= 3; ++d) {
-          detail::clip_against(poly, scratch, d, blo[d], -1.0);
-          if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0);
+          detail::clip_against(poly, scratch, d, blo[d], -1.0, tol[d]);
+          if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0, tol[d]);
         }
         if (poly.size() < 3) return;
         // area-weighted centroid of the fan triangles
