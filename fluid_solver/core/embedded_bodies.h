@@ -1,6 +1,8 @@
 // Embedded bodies with prescribed rigid motion (the scene's `fluid.embedded.bodies`): each cycle
 // the surface is placed at the current time, the geometry is rebuilt (paper section 6), converted
-// to the solver's EmbeddedState and handed over; after the step the surface moves by dt.
+// to the solver's EmbeddedState and handed over; after the step the surface moves by dt. The wall
+// pressure of each face (a rigid body's p_I: the fluid's pressure extrapolated to the wall, as the samples
+// of a coupled run) goes with it, for the ghost pressures (ghost_fill.h).
 // A decorator around the flow solver: in coupled runs the coupler feeds set_embedded instead.
 #pragma once
 
@@ -14,6 +16,8 @@
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/core/wall_faces.h"
+#include "fluid_solver/coupled/interface_samples.h"
+#include "fluid_solver/coupled/interface_surface.h"
 #include "fluid_solver/embedded/geometry.h"
 #include "fluid_solver/embedded/scene_bodies.h"
 
@@ -83,7 +87,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
  public:
   EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
       : inner_(std::move(inner)), g_(s.cells, s.lower, s.upper), surface_(embedded::surface_of(s.embedded, DIM)),
-        second_order_(s.embedded.second_order) {
+        second_order_(s.embedded.second_order), ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
     opt_.band_cells = s.embedded.band;
     update();
   }
@@ -115,7 +119,16 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   void update() {
     const auto t0 = std::chrono::steady_clock::now();
     embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
-    inner_->set_embedded(to_embedded_state<DIM>(g_, surface_, geo_), second_order_);
+    if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
+      const coupling::FluidSamples smp =
+          coupled::sample_interface<DIM>(g_, geo_.category, *inner_, coupled::faces_of_surface(surface_));
+      wall_pressure_.assign(2 * static_cast<std::size_t>(smp.count), std::nan(""));
+      for (int f = 0; f < smp.count; ++f)
+        if (smp.wetted[f])
+          for (int k = 0; k < smp.phases; ++k) wall_pressure_[2 * f + k] = smp.pressure[f * smp.phases + k];
+    }
+    inner_->set_embedded(to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),
+                         second_order_);
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -125,6 +138,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   embedded::GeometryOptions opt_;
   embedded::EmbeddedGeometry<DIM> geo_;
   bool second_order_;
+  bool ghost_wall_pressure_;
+  std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;
 };
 

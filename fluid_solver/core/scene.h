@@ -86,8 +86,9 @@ struct EmbeddedBody {
 struct EmbeddedSettings {
   bool second_order = true;  // paper steps 5-6 (face states) on top of the ghost cells
   double band = 3.0;         // narrow-band half-width [cells]
-  // Ghost pressure (coupled runs, where the coupler gives p_I): extrapolated through the wall from p_I
-  // (ghost_pressure: interface, default) or the image point's copied (image; scene bodies always).
+  // Ghost pressure: extrapolated through the wall from the wall pressure p_I (ghost_pressure: interface,
+  // default; the coupler's p_I, or for the scene's bodies the fluid's pressure extrapolated to the wall) or
+  // the image point's copied (image).
   bool ghost_pressure_from_interface = true;
   std::vector<EmbeddedBody> bodies;
 };

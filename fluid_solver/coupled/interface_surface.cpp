@@ -1,3 +1,4 @@
+#include <limits>
 #include "fluid_solver/coupled/interface_surface.h"
 
 #include <fmt/format.h>
@@ -104,6 +105,34 @@ InterfaceSurface surface_from_faces(const coupling::Faces& f, int dim, double ba
     }
   }
   return out;
+}
+
+coupling::Faces faces_of_surface(const embedded::Surface& s) {
+  coupling::Faces f;
+  const int dim = s.dim;
+  f.dim = dim;
+  f.count = static_cast<int>(s.faces.size());
+  const int nv = dim == 3 ? 3 : dim == 2 ? 2 : 1;  // vertices of a face (1D: the point)
+  for (int i = 0; i < f.count; ++i) {
+    const auto& q = s.faces[static_cast<std::size_t>(i)];
+    double measure = 0;
+    const Vec3 n = embedded::face_normal(s, i, &measure);
+    Vec3 c{0, 0, 0}, v{0, 0, 0};
+    for (int k = 0; k < nv; ++k)
+      for (int d = 0; d < 3; ++d) {
+        c[d] += s.vertices[q[k]][d];
+        v[d] += s.velocities[q[k]][d];
+      }
+    for (int d = 0; d < dim; ++d) {
+      f.centre.push_back(c[d] / nv);
+      f.normal.push_back(n[d]);
+      f.velocity.push_back(v[d] / nv);
+    }
+    f.area.push_back(measure);
+    f.normal_stress.push_back(0.0);
+    f.impedance.push_back(std::numeric_limits<double>::infinity());
+  }
+  return f;
 }
 
 }  // namespace cosim::fluid::coupled

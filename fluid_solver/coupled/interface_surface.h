@@ -24,4 +24,8 @@ struct InterfaceSurface {
 // outward normals. Throws std::invalid_argument naming the field for malformed data.
 InterfaceSurface surface_from_faces(const coupling::Faces& faces, int dim, double back_dt);
 
+// The faces of a Surface as a solid would send them (centre, outward normal, measure, mean vertex velocity;
+// no vertex data): what sample_interface() reads, e.g. to sample next to the scene's own bodies.
+coupling::Faces faces_of_surface(const embedded::Surface& s);
+
 }  // namespace cosim::fluid::coupled
