@@ -8,9 +8,14 @@
 //    it), so each gap of a row takes the sign of the band point next to it; a row without band
 //    points takes the sign of the previous row, and only the very first such row asks the
 //    winding number (O(faces), once).
+//  * Next cycle, on the same lattice with every vertex moved by less than half the band width: a point
+//    outside the new band cannot have changed sides (the signed distance moves by at most the surface's
+//    displacement), so only the previous band's points that left the band are reset to +-band_width by
+//    their old sign, and nothing else is touched: O(band) work instead of the dense row fill.
 #pragma once
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "fluid_solver/embedded/closest_point.h"
@@ -34,19 +39,37 @@ struct LevelSet {
   std::vector<int> slot;      // index into band, -1 outside the band
   std::vector<BandPoint> band;
   double band_width = 0;
+  // What the dense fill of the previous cycle was made for (the incremental update needs the same).
+  std::vector<Vec3> filled_vertices;
+  std::array<int, 3> filled_count{0, 0, 0};
+  std::array<double, 3> filled_lower{0, 0, 0}, filled_dx{0, 0, 0};
+  const void* filled_category = nullptr;
+  double filled_band_width = 0;
+  std::vector<std::pair<std::size_t, bool>> previous;  // scratch: last band (index, phi >= 0)
   const BandPoint* at(std::size_t idx) const { return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])]; }
 };
 
 // Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
 // If `category` is given (centre lattice), the out-of-band cells are set to `fluid` / `solid` there.
-// Reusing `ls` from the previous cycle (same lattice) clears only the previous band: the one dense
-// pass is the final row fill of phi (and category).
+// Reusing `ls` from the previous cycle (same lattice) clears only the previous band; the dense row fill
+// of phi (and category) is skipped when the surface moved by less than half the band width.
 template <int DIM>
 void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width, std::size_t& tests,
                        std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0) {
   const Lattice<DIM>& L = ls.lattice;
-  ls.band_width = band_width;
   const double bw2 = band_width * band_width;
+  bool incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
+                     ls.filled_lower == L.lower && ls.filled_dx == L.dx && ls.filled_category == category &&
+                     ls.filled_band_width == band_width && (!category || category->size() == L.size) &&
+                     ls.filled_vertices.size() == s.vertices.size();
+  for (std::size_t v = 0; incremental && v < s.vertices.size(); ++v) {
+    const Vec3 dv = s.vertices[v] - ls.filled_vertices[v];
+    incremental = dot(dv, dv) < 0.25 * bw2;
+  }
+  ls.previous.clear();
+  if (incremental)
+    for (const auto& b : ls.band) ls.previous.emplace_back(b.index, ls.phi[b.index] >= 0);
+  ls.band_width = band_width;
   if (ls.slot.size() != L.size) {
     ls.slot.assign(L.size, -1);
   } else {
@@ -104,6 +127,20 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
     b.closest = cp.point;
     b.bary = cp.bary;
     b.normal = std::abs(phi) > 1e-9 * hmin ? (1.0 / phi) * (x - cp.point) : normalized(pn);
+  }
+  ls.filled_vertices = s.vertices;
+  ls.filled_count = L.count;
+  ls.filled_lower = L.lower;
+  ls.filled_dx = L.dx;
+  ls.filled_category = category;
+  ls.filled_band_width = band_width;
+  if (incremental) {  // the previous band's points that left the band keep their side
+    for (const auto& [idx, positive] : ls.previous) {
+      if (ls.slot[idx] >= 0) continue;
+      ls.phi[idx] = positive ? band_width : -band_width;
+      if (category) (*category)[idx] = positive ? fluid : solid;
+    }
+    return;
   }
   // Sign outside the band, row by row.
   std::vector<std::size_t> sorted(ls.band.size());
