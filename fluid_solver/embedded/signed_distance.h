@@ -88,13 +88,16 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
         hi[d] = std::max(hi[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
       }
     const Vec3& n = topo.face_normal[f];
-    for_each_in_slab(L, lo, hi, grow, n, dot(n, s.vertices[static_cast<std::size_t>(fc[0])]), band_width, [&](int I, int J, int K) {
+    const double plane = dot(n, s.vertices[static_cast<std::size_t>(fc[0])]);
+    for_each_in_slab(L, lo, hi, grow, n, plane, band_width, [&](int I, int J, int K) {
       const std::size_t idx = L.index(I, J, K);
       const Vec3 x = L.point(I, J, K);
       const int sl = ls.slot[idx];
       const double best = sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2;
-      // The distance to the face's bounding box bounds the distance to the face from below: a point
-      // already closer to another face (or outside the band) needs no exact test.
+      // The distances to the face's plane and to its bounding box bound the distance to the face from
+      // below: a point already closer to another face (or outside the band) needs no exact test.
+      const double pd = dot(n, x) - plane;
+      if (pd * pd >= best) return;
       double lb = 0;
       for (std::size_t d = 0; d < 3; ++d) {
         const double out = std::max({lo[d] - x[d], 0.0, x[d] - hi[d]});
