@@ -23,6 +23,13 @@
 
 namespace cosim::fluid {
 
+// The directions in which the scene's domain is periodic (the geometry keeps body faces on those boundaries).
+inline std::array<bool, 3> periodic_directions(const FluidScene& s) {
+  std::array<bool, 3> p{false, false, false};
+  for (int d = 0; d < 3; ++d) p[static_cast<std::size_t>(d)] = s.boundaries[d][0].kind == BoundaryKind::Periodic;
+  return p;
+}
+
 // The solver's view of one cycle's geometry.
 // `wall_normal_speed` (coupled runs): per Surface face, the interface normal velocity u_I . n of the
 // coupler (paper eq. 22); it replaces the normal component of the surface velocity at the ghosts'
@@ -89,6 +96,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       : inner_(std::move(inner)), g_(s.cells, s.lower, s.upper), surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order), ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
     opt_.band_cells = s.embedded.band;
+    opt_.periodic = periodic_directions(s);
     update();
   }
 

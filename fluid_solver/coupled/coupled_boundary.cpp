@@ -24,6 +24,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
         second_order_(sim.scene().embedded.second_order),
         ghost_wall_pressure_(sim.scene().embedded.ghost_pressure_from_interface) {
     opt_.band_cells = sim.scene().embedded.band;
+    opt_.periodic = periodic_directions(sim.scene());
   }
 
   coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fluid_solver/embedded/lattice.h"
+#include "fluid_solver/embedded/signed_distance.h"
 #include "fluid_solver/embedded/surface.h"
 
 namespace cosim::fluid::embedded {
@@ -74,11 +75,11 @@ inline bool owns_piece(const std::vector<Vec3>& pts, const Vec3& lo, const Vec3&
 
 }  // namespace detail
 
-// Clips all faces of s to the cells of the padded grid. Pieces outside the padded grid are dropped.
-// `tests` counts the face-vs-cell clip tests performed.
+// Clips all faces of s to the cells of the padded grid. Pieces outside the padded grid are dropped, and so
+// are the faces on the domain wall (`walls`, geometry.h: domain_wall_faces). `tests` counts the clip tests.
 template <int DIM>
 void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& topo, std::vector<InterfaceSegment>& segments,
-                  std::vector<Vec3>& points, std::size_t& tests) {
+                  std::vector<Vec3>& points, std::size_t& tests, const DomainWallFaces* walls = nullptr) {
   segments.clear();
   points.clear();
   const Lattice<DIM> centres = centre_lattice(g), nodes = node_lattice(g);
@@ -92,6 +93,7 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
   const double min_measure = DIM == 3 ? 1e-12 * hmin * hmin : 1e-12 * hmin;
   std::vector<Vec3> poly, scratch;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (walls && walls->skips(f)) continue;
     const auto& fc = s.faces[f];
     const Vec3& n = topo.face_normal[f];
     const int nid = DIM == 1 ? 1 : DIM;

@@ -27,7 +27,43 @@ struct GeometryOptions {
   int thin_reach = 1;          // ghost layers checked for two-sided use (thin_body.h, T1)
   bool refuse_thin = true;  // throw on thin bodies (else only list them in EmbeddedGeometry::thin)
   ImagePointOptions image{};
+  // Directions whose domain boundary is periodic: there a body face on the boundary plane has fluid behind
+  // it. On other sides a face that lies in the boundary plane with its solid inside the domain is the domain
+  // wall already: it gives no segments and no closest face inside the domain (domain_wall_faces()).
+  std::array<bool, 3> periodic{false, false, false};
 };
+
+// Faces of s that lie in a non-periodic boundary plane of the domain with their normal pointing out of it
+// (a piston filling a channel: its side faces on the channel walls). They give no interface segments and
+// reach only the lattice points on or beyond their plane (the ghost layers outside the domain): inside the
+// domain they would capture the ghost cells in the corner rows of the faces that do touch the fluid (a ghost as
+// close to the side face on the wall as to the end face was mirrored about the wall instead of the moving end
+// face: piston_2d at 40 x 8 was 2.5% off the reference, with the side faces outside the channel 0.1%).
+template <int DIM>
+DomainWallFaces domain_wall_faces(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& topo,
+                                  const std::array<bool, 3>& periodic) {
+  DomainWallFaces w;
+  w.code.assign(s.faces.size(), 0);
+  for (std::size_t d = 0; d < 3; ++d) {
+    w.lower[d] = g.lower[d];
+    w.upper[d] = g.lower[d] + g.n[d] * g.dx[d];
+    w.tol[d] = 1e-10 * g.dx[d];
+  }
+  const int nv = DIM == 1 ? 1 : DIM;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (std::size_t d = 0; d < static_cast<std::size_t>(DIM) && !w.code[f]; ++d) {
+      if (periodic[d]) continue;
+      const double nd = topo.face_normal[f][d];
+      bool on_lo = nd < -0.5, on_hi = nd > 0.5;
+      for (int k = 0; k < nv; ++k) {
+        const double x = s.vertices[static_cast<std::size_t>(s.faces[f][static_cast<std::size_t>(k)])][d];
+        on_lo = on_lo && std::abs(x - w.lower[d]) <= w.tol[d];
+        on_hi = on_hi && std::abs(x - w.upper[d]) <= w.tol[d];
+      }
+      if (on_lo || on_hi) w.code[f] = static_cast<signed char>(1 + 2 * d + (on_hi ? 1 : 0));
+    }
+  return w;
+}
 
 // Seconds spent per part in one build_geometry call.
 struct GeometryTiming {
@@ -78,8 +114,9 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   e.work = {};
   e.thin.clear();
   const SurfaceTopology topo = build_topology(s);
+  const DomainWallFaces skip = domain_wall_faces(g, s, topo, opt.periodic);
   const auto t1 = clock::now();
-  clip_surface(g, s, topo, e.segments, e.segment_points, e.work.clip_tests);
+  clip_surface(g, s, topo, e.segments, e.segment_points, e.work.clip_tests, &skip);
   const auto t2 = clock::now();
   // Band: at least the ghost reach (ghost centres are up to ghost_layers*|dx| from the surface).
   double hmax = 0, diag2 = 0;
@@ -94,8 +131,8 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   e.centres.lattice = centre_lattice(g);
   e.nodes.lattice = node_lattice(g);
   compute_level_set(e.centres, s, topo, e.band_width, e.work.distance_tests, &e.category, static_cast<std::uint8_t>(CellKind::Fluid),
-                    static_cast<std::uint8_t>(CellKind::Solid));
-  compute_level_set(e.nodes, s, topo, node_band, e.work.distance_tests);
+                    static_cast<std::uint8_t>(CellKind::Solid), &skip);
+  compute_level_set(e.nodes, s, topo, node_band, e.work.distance_tests, nullptr, 0, 0, &skip);
   e.work.band_centres = e.centres.band.size();
   e.work.band_nodes = e.nodes.band.size();
   const auto t3 = clock::now();

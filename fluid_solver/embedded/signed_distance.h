@@ -32,6 +32,21 @@ struct BandPoint {
   double d2 = 0;                        // squared distance (scatter minimum)
 };
 
+// Faces in a boundary plane of the domain (geometry.h: domain_wall_faces): code 0 for an ordinary face,
+// 1 + 2 d + side for a face on the lower (side 0) or upper (side 1) boundary of axis d.
+struct DomainWallFaces {
+  std::vector<signed char> code;
+  std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0}, tol{0, 0, 0};
+  bool skips(std::size_t f) const { return !code.empty() && code[f] != 0; }
+  // Whether face f may be the closest face of point x: ordinary faces always, wall faces only on or beyond
+  // their plane.
+  bool reaches(std::size_t f, const Vec3& x) const {
+    if (code.empty() || code[f] == 0) return true;
+    const auto d = static_cast<std::size_t>((code[f] - 1) / 2);
+    return (code[f] - 1) % 2 == 0 ? x[d] <= lower[d] + tol[d] : x[d] >= upper[d] - tol[d];
+  }
+};
+
 template <int DIM>
 struct LevelSet {
   Lattice<DIM> lattice;
@@ -55,7 +70,8 @@ struct LevelSet {
 // of phi (and category) is skipped when the surface moved by less than half the band width.
 template <int DIM>
 void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width, std::size_t& tests,
-                       std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0) {
+                       std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0,
+                       const DomainWallFaces* walls = nullptr) {
   const Lattice<DIM>& L = ls.lattice;
   const double bw2 = band_width * band_width;
   bool incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
@@ -80,6 +96,7 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
   const Vec3 grow{band_width, band_width, band_width};
   const int nid = DIM == 1 ? 1 : DIM;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const bool wall_face = walls && walls->skips(f);  // on the domain wall: reaches only the ghost layers
     const auto& fc = s.faces[f];
     Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;
     for (int k = 1; k < nid; ++k)
@@ -92,6 +109,7 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
     for_each_in_slab(L, lo, hi, grow, n, plane, band_width, [&](int I, int J, int K) {
       const std::size_t idx = L.index(I, J, K);
       const Vec3 x = L.point(I, J, K);
+      if (wall_face && !walls->reaches(f, x)) return;
       const int sl = ls.slot[idx];
       const double best = sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2;
       // The distances to the face's plane and to its bounding box bound the distance to the face from

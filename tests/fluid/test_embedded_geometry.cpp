@@ -559,3 +559,35 @@ TEST(EmbeddedGeometry, IncrementalLevelSetEqualsAFreshBuild) {
 
 }  // namespace
 }  // namespace cosim::fluid::embedded
+
+namespace cosim::fluid::embedded {
+namespace {
+
+// A piston filling a channel: its side faces lie on the channel walls. Inside the domain every ghost takes its
+// image point from an end face (normal +-x), also in the corner rows, where it is as close to the side face;
+// the side faces give no segments. With periodic walls the side faces are real interfaces and are kept.
+TEST(EmbeddedGeometry, FacesOnTheDomainWallLeaveTheCornerGhostsToTheEndFaces) {
+  const Grid<2> g({20, 8}, {0, 0, 0}, {2.0, 0.8, 0});
+  const Surface s = make_box(2, {0.5, 0.0, 0}, {1.0, 0.8, 0});
+  const auto e = build_geometry(g, s, 3.0);
+  std::size_t inside = 0;
+  for (const auto& ip : e.image_points) {
+    if (ip.x_cell[1] < 0 || ip.x_cell[1] > 0.8) continue;  // ghost layers outside the channel
+    ++inside;
+    EXPECT_NEAR(std::abs(ip.normal[0]), 1.0, 1e-12) << ip.x_cell[0] << " " << ip.x_cell[1];
+  }
+  EXPECT_GE(inside, 2u * 2u * 8u);  // two ghost columns at either end in every row (and a few near the walls)
+  for (const auto& seg : e.segments) EXPECT_NEAR(std::abs(seg.normal[0]), 1.0, 1e-12);
+  double length = 0;
+  for (const auto& seg : e.segments) length += seg.area;
+  EXPECT_NEAR(length, 1.6, 1e-12);  // the two end faces only
+  GeometryOptions periodic;
+  periodic.periodic = {false, true, false};
+  const auto ep = build_geometry(g, s, periodic);
+  double plength = 0;
+  for (const auto& seg : ep.segments) plength += seg.area;
+  EXPECT_NEAR(plength, 2.6, 1e-12);  // all four faces
+}
+
+}  // namespace
+}  // namespace cosim::fluid::embedded
