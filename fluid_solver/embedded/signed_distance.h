@@ -106,7 +106,10 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
       }
     const Vec3& n = topo.face_normal[f];
     const double plane = dot(n, s.vertices[static_cast<std::size_t>(fc[0])]);
-    for_each_in_slab(L, lo, hi, grow, n, plane, band_width, [&](int I, int J, int K) {
+    // A face on the domain wall reaches only its outer side (its normal points out of the domain): half the slab.
+    const double centre = wall_face ? plane + 0.5 * band_width : plane;
+    const double half_width = wall_face ? 0.5 * band_width + 1e-9 * band_width : band_width;
+    for_each_in_slab(L, lo, hi, grow, n, centre, half_width, [&](int I, int J, int K) {
       const std::size_t idx = L.index(I, J, K);
       const Vec3 x = L.point(I, J, K);
       if (wall_face && !walls->reaches(f, x)) return;
