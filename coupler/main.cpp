@@ -23,10 +23,11 @@
 using namespace cosim;
 
 namespace {
-void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& s) {
+void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& s, coupling::Scheme scheme) {
   const double n = std::max<long>(s.cycles, 1);
   nlohmann::json j;
   j["status"] = s.status;
+  j["scheme"] = coupling::scheme_name(scheme);  // pipelined: solid and fluid work overlap (CycleTiming::comm)
   j["message"] = s.message;
   j["cycles"] = s.cycles;
   j["time"] = s.time;
@@ -89,7 +90,7 @@ int main(int argc, char** argv) {
     spdlog::info("listening on {} ({} coupling, {} cycle, timeout {:g} s)", hub.bound_endpoint(),
                  coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.timeout);
     const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out);
-    write_summary(out, s);
+    write_summary(out, s, cfg.scheme);
     if (s.code == 0) {
       const double n = std::max<long>(s.cycles, 1);
       spdlog::info("{}; per cycle: wall {:.3g} ms, solid {:.3g} ms, fluid {:.3g} ms, coupler {:.3g} ms, "

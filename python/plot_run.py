@@ -422,28 +422,39 @@ def plot_fields(fluid_dir, out_dir, mask_ghosts=True):
 
 
 def plot_timing(timing_path, summary_path, out_dir, max_bins=600):
-    """Stacked wall time per cycle (solid, fluid, coupler, comm); cycles averaged in bins when there are many."""
+    """Stacked wall time per cycle (solid, fluid, coupler, comm); cycles averaged in bins when there are many.
+    In the pipelined cycle the solid works while the fluid does: the longer of the two is stacked, the solid
+    drawn as a line."""
+    summary = {}
+    if os.path.isfile(summary_path):
+        with open(summary_path) as f:
+            summary = json.load(f)
+    overlapped = summary.get("scheme") == "pipelined"
     cols = read_csv_columns(timing_path)
     cycle = cols["cycle"]
-    parts = ["solid", "fluid", "coupler", "comm"]
-    values = [cols[k] * 1e3 for k in parts]
+    solid = cols["solid"] * 1e3
+    if overlapped:
+        parts = ["solver (max of solid, fluid)", "coupler", "comm"]
+        values = [np.maximum(cols["solid"], cols["fluid"]) * 1e3, cols["coupler"] * 1e3, cols["comm"] * 1e3]
+    else:
+        parts = ["solid", "fluid", "coupler", "comm"]
+        values = [cols[k] * 1e3 for k in parts]
     wall = cols["wall"] * 1e3
     per_bin = max(1, int(math.ceil(len(cycle) / max_bins)))
     if per_bin > 1:
         nb = len(cycle) // per_bin
         binned = lambda a: a[: nb * per_bin].reshape(nb, per_bin).mean(axis=1)  # noqa: E731
-        cycle, values, wall = binned(cycle), [binned(v) for v in values], binned(wall)
+        cycle, values, wall, solid = binned(cycle), [binned(v) for v in values], binned(wall), binned(solid)
     fig, ax = plt.subplots(figsize=(9, 4.5))
     ax.stackplot(cycle, *values, labels=parts, alpha=0.85)
     ax.plot(cycle, wall, "k-", lw=0.8, label="wall")
+    if overlapped:
+        ax.plot(cycle, solid, "b-", lw=0.8, label="solid (overlapped)")
     ax.set_xlabel("cycle")
     ax.set_ylabel("time per cycle [ms]" + (f" (mean of {per_bin} cycles)" if per_bin > 1 else ""))
-    title = "coupled cycle timing"
-    if os.path.isfile(summary_path):
-        with open(summary_path) as f:
-            s = json.load(f)
-        if "comm_fraction" in s:
-            title += f": {s.get('cycles', len(cols['cycle']))} cycles, comm {100 * s['comm_fraction']:.0f}% of wall"
+    title = "coupled cycle timing" + (f" ({summary['scheme']})" if "scheme" in summary else "")
+    if "comm_fraction" in summary:
+        title += f": {summary.get('cycles', len(cols['cycle']))} cycles, comm {100 * summary['comm_fraction']:.0f}% of wall"
     ax.set_title(title)
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
