@@ -84,6 +84,17 @@ struct Loop {
     busy0_s = hub.peer(Role::Solid).busy;
   }
 
+  // Runs f as the coupler's own work of the open cycle (timed) and returns its result.
+  template <class F>
+  auto work(F&& f) {
+    struct Clock {  // adds the elapsed time when the work is done, whatever it returns
+      double& total;
+      double start = now_s();
+      ~Clock() { total += now_s() - start; }
+    } clock{open.coupler};
+    return f();
+  }
+
   // One cycle; returns the smallest proposal for the next one. The coupler's order is the same in both
   // schemes: the fluid's place of its DtProposal (before or after its advance) makes the cycle pipelined.
   double cycle(long n, double t, double dt) {
@@ -96,43 +107,43 @@ struct Loop {
     // Work that waits for the solid (faces) is done before the fluid's samples arrive; from the samples to the
     // fluid's states (the pipelined cycle's critical path) only the interface conditions.
     pb::Envelope faces_msg = hub.expect(Role::Solid, pb::Envelope::kFaces, n);
-    double c0 = now_s();
-    last_faces = coupling::from_pb(faces_msg.faces());  // kept for the interface snapshots
-    const coupling::Faces& faces = last_faces;
-    pb::Envelope fwd = envelope(hub, n, t + dt);
-    fwd.mutable_faces()->Swap(faces_msg.mutable_faces());
-    open.coupler += now_s() - c0;
+    pb::Envelope fwd = work([&] {
+      last_faces = coupling::from_pb(faces_msg.faces());  // kept for the interface snapshots
+      pb::Envelope e = envelope(hub, n, t + dt);
+      e.mutable_faces()->Swap(faces_msg.mutable_faces());
+      return e;
+    });
     hub.send(Role::Fluid, fwd);
     pb::Envelope samples_msg = hub.expect(Role::Fluid, pb::Envelope::kSamples, n);
 
-    c0 = now_s();
-    coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
-    if (samples.count != faces.count)
-      hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
-                                          faces.count));
-    if (cfg.pressure_predictor) predictor.apply(samples, t, dt);
-    last_states = interface_conditions(faces, samples, cfg.mode);
-    const coupling::InterfaceStates& st = last_states;
-    pb::Envelope to_fluid = envelope(hub, n, t + dt);
-    coupling::to_pb(st, *to_fluid.mutable_states());
-    to_fluid.mutable_states()->clear_face_pressure();
-    to_fluid.mutable_states()->clear_face_normal_velocity();
-    to_fluid.mutable_states()->clear_face_wetted();
-    open.coupler += now_s() - c0;
+    const coupling::Faces& faces = last_faces;
+    pb::Envelope to_fluid = work([&] {
+      coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
+      if (samples.count != faces.count)
+        hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
+                                            faces.count));
+      if (cfg.pressure_predictor) predictor.apply(samples, t, dt);
+      last_states = interface_conditions(faces, samples, cfg.mode);
+      pb::Envelope e = envelope(hub, n, t + dt);
+      coupling::to_pb(last_states, *e.mutable_states());
+      e.mutable_states()->clear_face_pressure();
+      e.mutable_states()->clear_face_normal_velocity();
+      e.mutable_states()->clear_face_wetted();
+      return e;
+    });
     hub.send(Role::Fluid, to_fluid);
-    c0 = now_s();
-    pb::Envelope to_solid = envelope(hub, n, t + dt);
-    coupling::to_pb(st, *to_solid.mutable_states());
-    to_solid.mutable_states()->set_phases(0);
-    to_solid.mutable_states()->clear_pressure();
-    to_solid.mutable_states()->clear_normal_velocity();
-    open.coupler += now_s() - c0;
+    pb::Envelope to_solid = work([&] {
+      pb::Envelope e = envelope(hub, n, t + dt);
+      coupling::to_pb(last_states, *e.mutable_states());
+      e.mutable_states()->set_phases(0);
+      e.mutable_states()->clear_pressure();
+      e.mutable_states()->clear_normal_velocity();
+      return e;
+    });
     hub.send(Role::Solid, to_solid);
 
     auto proposals = hub.expect_both(pb::Envelope::kDtProposal, n);
-    const double c1 = now_s();
-    history.record(n, t + dt, dt, faces, st);
-    open.coupler += now_s() - c1;
+    work([&] { history.record(n, t + dt, dt, faces, last_states); });
     return std::min(proposals[0].dt_proposal().dt(), proposals[1].dt_proposal().dt());
   }
 
@@ -145,9 +156,7 @@ struct Loop {
       pb::Envelope o = envelope(hub, n, t);
       o.mutable_output_request()->set_index(out_index++);
       send_both(o);
-      const double c0 = now_s();
-      history.snapshot(n, t, last_faces, last_states);
-      open.coupler += now_s() - c0;
+      work([&] { history.snapshot(n, t, last_faces, last_states); });
     };
     for (long n = 0;; ++n) {
       const double proposal = cycle(n, t, dt);
