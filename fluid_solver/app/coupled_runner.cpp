@@ -51,40 +51,42 @@ int run_fluid_coupled(const RunOptions& opt) {
   bool first = true;
   // Pipelined cycle: the proposal for the next step comes from t^n, right after the samples, so the coupler
   // can start the solid's next step while this one advances; the step taken may then exceed this state's
-  // stable step a little: the largest ratio is reported (max_step_over_stable).
+  // stable step a little: the largest ratio is reported (max_step_over_stable), a warning above 1.1.
   const bool pipelined = client->scheme() == coupling::Scheme::Pipelined;
   double max_step_over_stable = 0;
   bool warned = false;
+  const auto note_lag = [&](const coupling::Directive& d, double stable) {
+    const double ratio = d.dt / stable;
+    max_step_over_stable = std::max(max_step_over_stable, ratio);
+    if (ratio > 1.1 && !warned) {
+      spdlog::warn("cycle {}: the pipelined step {:.4g} s is {:.2f}x the stable step of this state (CFL {:.3g} -> "
+                   "{:.3g}); coupling.scheme: sequential avoids the lag",
+                   d.cycle, d.dt, ratio, scene.cfl, ratio * scene.cfl);
+      warned = true;
+    }
+  };
+  const auto solver_work = [&](auto&& f) {  // timed into flow_solver_seconds
+    const auto t0 = std::chrono::steady_clock::now();
+    const double r = f();
+    solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  };
   const auto cycle = [&](const coupling::Directive& d) {
     const coupling::Faces faces = client->receive_faces();
     client->send_samples(boundary->receive_faces(faces, d.dt));
-    double stable_now = 0;
-    if (pipelined) {
-      const auto t0 = std::chrono::steady_clock::now();
-      stable_now = sim->stable_dt();
-      solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      client->propose_dt(stable_now);
-    }
+    const double stable_now = pipelined ? solver_work([&] { return sim->stable_dt(); }) : 0.0;
+    if (pipelined) client->propose_dt(stable_now);
     boundary->apply_states(client->receive_states());
     if (first) {  // the flow domain is known from the first geometry on
       rec.start_totals = totals_json(scene, sim->totals());
       first = false;
     }
-    if (pipelined && d.dt > 0) {
-      const double ratio = d.dt / stable_now;
-      max_step_over_stable = std::max(max_step_over_stable, ratio);
-      if (ratio > 1.1 && !warned) {
-        spdlog::warn("cycle {}: the pipelined step {:.4g} s is {:.2f}x the stable step of this state (CFL {:.3g} "
-                     "-> {:.3g}); coupling.scheme: sequential avoids the lag",
-                     d.cycle, d.dt, ratio, scene.cfl, ratio * scene.cfl);
-        warned = true;
-      }
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    if (d.dt > 0) sim->advance(d.dt);
-    const double dt = pipelined ? 0.0 : sim->stable_dt();
-    solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!pipelined) client->propose_dt(dt);
+    if (pipelined && d.dt > 0) note_lag(d, stable_now);
+    const double next = solver_work([&] {
+      if (d.dt > 0) sim->advance(d.dt);
+      return pipelined ? 0.0 : sim->stable_dt();
+    });
+    if (!pipelined) client->propose_dt(next);
   };
   const auto output = [&](const coupling::Directive&) { write_snapshot(series, *sim, boundary->segments_csv()); };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output);
