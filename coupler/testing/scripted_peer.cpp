@@ -3,10 +3,12 @@
 //   cosim_scripted_peer --role fluid|solid --endpoint EP [--token T] [--scene FILE] [--set k=v ...]
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
+//                       [--extra-proposals N]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
-//        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle.
+//        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle, and with
+//        --extra-proposals N sends N more DtProposals right after its faces (a misbehaving peer).
 // Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -43,6 +45,8 @@ int main(int argc, char** argv) {
   app.add_option("--pressure", pressure);
   double gradient = 0.0;
   app.add_option("--pressure-gradient", gradient, "fluid: p = pressure + gradient * x_face [Pa/m]");
+  int extra_proposals = 0;
+  app.add_option("--extra-proposals", extra_proposals, "solid: DtProposals sent ahead of the cycle after its faces");
   CLI11_PARSE(app, argc, argv);
   const std::string tag = "[scripted-" + role + "] ";
   try {
@@ -78,6 +82,7 @@ int main(int argc, char** argv) {
         f.normal_stress = {0.0, 0.0};
         f.impedance = {impedance, impedance};
         c.send_faces(f);
+        for (int k = 0; k < extra_proposals; ++k) c.propose_dt(dt);
         c.receive_states();
       } else {
         const Faces f = c.receive_faces();

@@ -100,6 +100,25 @@ TEST(CouplingProcesses, MalformedBytesGetAnErrorReplyAndNoCrash) {
   for (auto& c : cs) EXPECT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
 }
 
+// The coupler keeps what a solver sends ahead of the cycle (a pipelined solid's faces and proposal) in that
+// solver's inbox; a message that is still out of order when its turn comes, or a flood of them, stops the run
+// with a message naming the peer and the message, never a hang.
+TEST(CouplingProcesses, MessagesAheadOfTheCycleAreQueuedOrRefused) {
+  for (const int extra : {1, 20}) {
+    ThreeProcs r("ahead_" + std::to_string(extra), kShort, {}, {"--extra-proposals", std::to_string(extra)});
+    wait_all(r.cs, 20);
+    EXPECT_EQ(r.cs[0].exit_code, 5) << r.log(0);
+    EXPECT_NE(r.cs[1].exit_code, 0);
+    EXPECT_NE(r.cs[2].exit_code, 0);
+    const std::string expected = extra == 1 ? "sent DtProposal out of order: expected InterfaceFaces in cycle 1"
+                                            : "sent 17 messages ahead of the cycle";
+    EXPECT_NE(r.log(0).find("solid (scripted_solid, pid " + std::to_string(r.cs[2].pid) + ")"), std::string::npos)
+        << r.log(0);
+    EXPECT_NE(r.log(0).find(expected), std::string::npos) << r.log(0);
+    EXPECT_FALSE(process_with_argument(r.dir.string()));
+  }
+}
+
 TEST(CouplingProcesses, KilledPeerDetectedWithin5sAndEveryoneStops) {
   ThreeProcs r("killed", kLong);
   // Let the run go for a while, then kill the fluid without warning.
