@@ -34,8 +34,9 @@ inline std::array<bool, 3> periodic_directions(const FluidScene& s) {
 // `wall_normal_speed` (coupled runs): per Surface face, the interface normal velocity u_I . n of the
 // coupler (paper eq. 22); it replaces the normal component of the surface velocity at the ghosts'
 // boundary intercepts. Null: the surface velocity as it is (prescribed motion).
-// `wall_pressure` (coupled runs): per Surface face, 2 values (phase 0, phase 1): the coupler's p_I, from which
-// the ghost pressures are extrapolated (ghost_fill.h). Null: ghosts copy the image point's pressure.
+// `wall_pressure`: per Surface face, 2 values (phase 0, phase 1; NaN: none) of p_I, the coupler's or, for the
+// scene's bodies, the fluid's pressure extrapolated to the wall, from which the ghost pressures are
+// extrapolated (ghost_fill.h). Null: ghosts copy the image point's pressure.
 template <int DIM>
 EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
                                 const embedded::EmbeddedGeometry<DIM>& geo,
@@ -130,10 +131,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
       const coupling::FluidSamples smp =
           coupled::sample_interface<DIM>(g_, geo_.category, *inner_, coupled::faces_of_surface(surface_));
-      wall_pressure_.assign(2 * static_cast<std::size_t>(smp.count), std::nan(""));
-      for (int f = 0; f < smp.count; ++f)
-        if (smp.wetted[f])
-          for (int k = 0; k < smp.phases; ++k) wall_pressure_[2 * f + k] = smp.pressure[f * smp.phases + k];
+      wall_pressure_ = coupled::wall_pressure_slots(smp, smp.pressure);
     }
     inner_->set_embedded(to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),
                          second_order_);

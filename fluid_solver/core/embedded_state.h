@@ -26,8 +26,9 @@ struct GhostRecord {
   int stencil_size = 0;                     // flow cells used at the image point
   std::array<std::size_t, 8> stencil{};     // padded indices
   std::array<double, 8> weights{};          // sum to 1
-  // Interface pressure p_I per phase at the boundary intercept (coupled runs: the coupler's, paper step 5
-  // "p_* = p_I"); when present, the ghost pressure is extrapolated through the wall from it (ghost_fill.h).
+  // Interface pressure p_I per phase at the boundary intercept (paper step 5 "p_* = p_I": the coupler's, or
+  // the fluid's extrapolated to the wall for the scene's bodies); when present, the ghost pressure is
+  // extrapolated through the wall from it (ghost_fill.h).
   bool has_wall_pressure = false;
   std::array<double, 2> wall_pressure{0, 0};  // [Pa], per phase
 };

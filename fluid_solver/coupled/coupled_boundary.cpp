@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cmath>
 #include <stdexcept>
 
 #include "fluid_solver/core/embedded_bodies.h"
@@ -59,13 +58,14 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       }
       face_speed_[f] = a > 0 ? u / a : 0.0;
     }
+    const std::vector<double> face_pressure = wall_pressure_slots(samples_, st.pressure);
     surface_speed_.resize(surface_.source_face.size());
-    surface_pressure_.assign(2 * surface_.source_face.size(), 0.0);
+    surface_pressure_.resize(2 * surface_.source_face.size());
     for (std::size_t sf = 0; sf < surface_.source_face.size(); ++sf) {
       const auto f = static_cast<std::size_t>(surface_.source_face[sf]);
       surface_speed_[sf] = face_speed_[f];
-      for (int k = 0; k < np; ++k)  // NaN: no fluid next to the face, no wall pressure for its ghosts
-        surface_pressure_[2 * sf + k] = samples_.wetted[f] ? st.pressure[f * np + k] : std::nan("");
+      surface_pressure_[2 * sf] = face_pressure[2 * f];
+      surface_pressure_[2 * sf + 1] = face_pressure[2 * f + 1];
     }
     sim_.set_embedded(to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_,
                                              ghost_wall_pressure_ ? &surface_pressure_ : nullptr),

@@ -141,4 +141,16 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   return out;
 }
 
+// The wall pressure of each face for the ghost cells (to_embedded_state): two slots per face (phases 0 and 1),
+// `pressure` per face and phase where the samples found fluid next to the face, NaN where not (no fluid, no wall
+// pressure: its ghosts copy the image point's).
+inline std::vector<double> wall_pressure_slots(const coupling::FluidSamples& s, const std::vector<double>& pressure) {
+  std::vector<double> out(2 * static_cast<std::size_t>(s.count), std::nan(""));
+  for (int f = 0; f < s.count; ++f)
+    if (s.wetted[static_cast<std::size_t>(f)])
+      for (int k = 0; k < s.phases; ++k)
+        out[2 * static_cast<std::size_t>(f) + k] = pressure[static_cast<std::size_t>(f) * s.phases + k];
+  return out;
+}
+
 }  // namespace cosim::fluid::coupled
