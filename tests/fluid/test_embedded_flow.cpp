@@ -239,21 +239,23 @@ double enstrophy(const FluidSimulation& sim, int nx, int ny, double dx, double d
   return z;
 }
 
-// Paper 9.1, small: Mach 0.05 flow over a step. With the low-Mach correction the scheme keeps far
-// more of the vorticity shed at the step's corner.
+// Paper 9.1, small: Mach 0.05 flow over a step (a block standing on the floor). Without the
+// correction the scheme's dissipation, which grows as 1/M, damps the shear layers leaving the
+// step's corners; with it they roll up and the wake sheds vortices, so the enstrophy at t = 10
+// (the flow has passed the block about once) is several times larger.
 TEST(EmbeddedFlow, LowMachStepKeepsVorticityWithCorrection) {
   double z[2];
   for (int lm = 0; lm < 2; ++lm) {
     FluidScene s = load_fluid_scene(std::string(COSIM_SOURCE_DIR) + "/configs/low_mach_step.yaml",
-                                    {"fluid.mesh.cells=[160, 80]", "fluid.time.end=6.0", "fluid.output.interval=0",
+                                    {"fluid.mesh.cells=[160, 80]", "fluid.time.end=10.0", "fluid.output.interval=0",
                                      std::string("fluid.numerics.low_mach=") + (lm ? "true" : "false")});
     auto sim = make_simulation(s);
     advance_to(*sim, s.t_end);
     z[lm] = enstrophy(*sim, 160, 80, 2.0 / 160, 1.0 / 80);
   }
-  std::printf("low-Mach step (160 x 80, t = 6): enstrophy %.4e without, %.4e with the correction (x%.2f)\n", z[0],
-              z[1], z[1] / z[0]);
-  EXPECT_GT(z[1], 1.2 * z[0]);  // measured x1.32 at this size
+  std::printf("[ measured ] low-Mach step (160 x 80, t = 10): enstrophy %.4e without, %.4e with the correction (x%.2f)\n",
+              z[0], z[1], z[1] / z[0]);
+  EXPECT_GT(z[1], 1.6 * z[0]);
 }
 
 }  // namespace

@@ -462,11 +462,15 @@ namespace {
 
 // The bodies of the issue-4 scenes (configs/*.yaml) build without refusal on their meshes.
 TEST(EmbeddedGeometry, SceneBodiesOnTheirMeshes) {
-  {  // low_mach_step: 640x320, step reaching below the floor and past the outlet
+  {  // low_mach_step: 640x320, the step reaching below the floor; also one running past the outlet
     const Grid<2> g({640, 320, 1}, {0, 0, 0}, {2, 1, 1});
-    const auto e = build_geometry(g, make_step(2, {0.5, -0.1, 0}, {2.1, 0.35, 0}), 3.0);
-    EXPECT_EQ(e.kind(g.index(300, 50)), CellKind::Solid);
+    const auto long_step = build_geometry(g, make_step(2, {0.5, -0.1, 0}, {2.1, 0.35, 0}), 3.0);
+    EXPECT_EQ(long_step.kind(g.index(300, 50)), CellKind::Solid);
+    EXPECT_EQ(long_step.kind(g.index(600, 50)), CellKind::Solid);
+    const auto e = build_geometry(g, make_step(2, {0.5, -0.1, 0}, {0.8, 0.35, 0}), 3.0);
+    EXPECT_EQ(e.kind(g.index(200, 50)), CellKind::Solid);
     EXPECT_EQ(e.kind(g.index(100, 50)), CellKind::Fluid);
+    EXPECT_EQ(e.kind(g.index(300, 50)), CellKind::Fluid);
     EXPECT_GT(e.counts.solid_cut, 0u);
     std::printf("[ low_mach_step 640x320 ] segments %zu, cut %zu, ghost %zu, total %.3f ms\n", e.segments.size(),
                 e.counts.fluid_cut + e.counts.solid_cut, e.counts.ghost, 1e3 * e.timing.total);
