@@ -124,11 +124,17 @@ TEST(EmbeddedFlow, ReflectedShockOffAngledWalls) {
   }
 }
 
-// A wall at 30 degrees moving into gas at rest at speed w along its normal (a piston): L1 error of
-// the pressure against the exact post-shock pressure between the moving wall and the shock (the
-// smeared shock itself excluded, so the boundary treatment shows), for first- and second-order
-// boundary treatment at three resolutions.
-double piston_error(int N, int order, double w, double t_end, double deg = 30) {
+// A wall at angle deg moving into gas at rest at speed w along its normal (a piston), measured in a
+// strip 0.2 wide along the wall around x = 0.35, against the exact solution (uniform p* between the
+// wall and the shock, gas at rest ahead):
+// - l1: mean |p - p_exact| from the wall to 0.1 beyond the shock (the smeared shock included);
+// - shock_offset: the shock's position from the equal-area rule, minus the exact one, in cells;
+// - near_wall: mean |p - p*| / p* over the half of the shocked gas next to the wall.
+struct PistonErrors {
+  double l1 = 0, shock_offset = 0, near_wall = 0;
+};
+
+PistonErrors piston_errors(int N, int order, double w, double t_end, double deg) {
   const double th = deg * std::numbers::pi / 180.0, nx = -std::sin(th), ny = std::cos(th);
   char extra[256];
   std::snprintf(extra, sizeof(extra), "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n");
@@ -139,46 +145,69 @@ double piston_error(int N, int order, double w, double t_end, double deg = 30) {
   auto sim = run_scene(scene, {"fluid.embedded.order=" + std::to_string(order)});
   exact::RiemannSolution ex({1, 0, 1}, {1.4, 0}, {1, -2 * w, 1}, {1.4, 0});  // gas | mirror, in the wall frame
   const double shock = -ex.left_tail() * t_end;  // distance the shock travelled from the initial wall
+  const double wall = w * t_end, half = 0.5 * (wall + shock), far = shock + 0.1;
   const double p_star = ex.star().p;
   PhaseFields f = sim->phase_fields(0);
   auto kind = categories(*sim);
   const double tt = std::tan(th), xm = 0.35, ym = kWallY0 + xm * tt;
-  double err = 0;
-  int n = 0;
+  PistonErrors e;
+  double excess = 0;
+  int n_all = 0, n_near = 0, n_ahead = 0;
   for (int j = 0; j < N; ++j)
     for (int i = 0; i < N; ++i) {
       const std::size_t c = static_cast<std::size_t>(j) * N + i;
       if (kind[c] > 1) continue;
       const double x = (i + 0.5) / N, y = (j + 0.5) / N;
-      const double dist = (y - kWallY0 - x * tt) * std::cos(th);  // from the initial wall position
+      const double dist = (y - kWallY0 - x * tt) * std::cos(th);  // from the initial wall
       const double along = (x - xm) * std::cos(th) + (y - ym) * std::sin(th);
-      // the shocked region between the moving wall and the shock, minus 4 cells at the shock
-      if (std::abs(along) > 0.1 || dist > shock - 4.0 / N) continue;
-      err += std::abs(f.p[c] - p_star);
-      ++n;
+      if (std::abs(along) > 0.1 || dist > far) continue;
+      e.l1 += std::abs(f.p[c] - (dist < shock ? p_star : 1.0));
+      ++n_all;
+      if (dist < half) {
+        e.near_wall += std::abs(f.p[c] - p_star) / p_star;
+        ++n_near;
+      } else {
+        excess += (f.p[c] - 1.0) / (p_star - 1.0);
+        ++n_ahead;
+      }
     }
-  return err / n;
+  EXPECT_GT(n_near, 4);
+  e.l1 /= n_all;
+  e.near_wall /= n_near;
+  e.shock_offset = (half + (far - half) * excess / n_ahead - shock) * N;
+  return e;
 }
 
-TEST(EmbeddedFlow, MovingPistonSecondOrderBoundaryIsMoreAccurate) {
-  for (double deg : {0.0, 30.0}) {  // along the grid (y) and diagonally
-    double e[2][3];
-    const int Ns[3] = {40, 80, 160};
-    for (int order = 1; order <= 2; ++order)
-      for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_error(Ns[r], order, 0.4, 0.15, deg);
-    for (int order = 1; order <= 2; ++order)
-      std::printf("piston at %2.0f deg, boundary order %d: L1(p) %.3e %.3e %.3e, orders %.2f %.2f\n", deg, order,
-                  e[order - 1][0], e[order - 1][1], e[order - 1][2], observed_order(e[order - 1][0], e[order - 1][1]),
-                  observed_order(e[order - 1][1], e[order - 1][2]));
-    // Both treatments converge. The d-weighted second-order face states beat the first-order
-    // ones on the diagonal wall; on a grid-aligned wall they do not yet (up to 27% worse at 40
-    // cells, equal at 160: an open item of issue 4).
-    EXPECT_LT(e[0][2], 0.5 * e[0][0]) << deg;
-    EXPECT_LT(e[1][2], 0.5 * e[1][0]) << deg;
-    if (deg > 0) {
-      for (int r = 0; r < 3; ++r) EXPECT_LT(e[1][r], e[0][r]) << deg << " " << Ns[r];
+// Constant-speed pistons into gas at rest (weak: w = 0.4, shock Mach 1.22; strong: w = 2, Mach 2.4),
+// along the grid and at 30 degrees, first- and second-order boundary. A shock's error is its smearing:
+// the L1 error converges at first order whatever the boundary, and the boundary's order cannot show
+// in it. What the boundary controls is the state it drives and where the shock is: the post-shock
+// state next to the wall within 0.1% at 160 cells and the shock within a cell of the exact one at
+// every resolution, with either treatment. The impulsive start is a discontinuity at the wall that
+// the d-weighted face states (eq. 23) extrapolate as if it were smooth: they push slightly less gas
+// in the first steps, and the strong shock lags 0.5-0.7 cells (0.0-0.3 with first-order faces).
+// The boundary's order shows on smooth flow: test_embedded_smooth_piston.cpp.
+TEST(EmbeddedFlow, MovingPistonShockWithFirstAndSecondOrderBoundary) {
+  const int Ns[3] = {40, 80, 160};
+  for (double w : {0.4, 2.0})
+    for (double deg : {0.0, 30.0}) {
+      PistonErrors e[2][3];
+      for (int order = 1; order <= 2; ++order)
+        for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_errors(Ns[r], order, w, w > 1 ? 0.1 : 0.15, deg);
+      for (int order = 1; order <= 2; ++order) {
+        const PistonErrors* x = e[order - 1];
+        std::printf("[ measured ] piston at %.1f, %2.0f deg, boundary order %d (N = 40, 80, 160): L1(p) %.3e %.3e %.3e "
+                    "(orders %.2f %.2f); shock offset %+.2f %+.2f %+.2f cells; near-wall |p - p*| / p* %.1e %.1e %.1e\n",
+                    w, deg, order, x[0].l1, x[1].l1, x[2].l1, observed_order(x[0].l1, x[1].l1),
+                    observed_order(x[1].l1, x[2].l1), x[0].shock_offset, x[1].shock_offset, x[2].shock_offset,
+                    x[0].near_wall, x[1].near_wall, x[2].near_wall);
+        EXPECT_GT(observed_order(x[0].l1, x[2].l1, 4.0), 0.55) << w << " " << deg << " " << order;
+        for (int r = 0; r < 3; ++r) {
+          EXPECT_LT(std::abs(x[r].shock_offset), 1.0) << w << " " << deg << " " << order << " " << Ns[r];
+          EXPECT_LT(x[r].near_wall, r == 2 ? 1e-3 : 5e-2) << w << " " << deg << " " << order << " " << Ns[r];
+        }
+      }
     }
-  }
 }
 
 }  // namespace
@@ -522,9 +551,9 @@ TEST(EmbeddedFlow, MovingPiston3DConvergence) {
           "3D piston at %2.0f deg (N = %d, %d, %d), boundary order %d: L1(p) %.3e %.3e %.3e, orders %.2f %.2f\n", deg,
           N[0], N[1], N[2], order, e[order - 1][0], e[order - 1][1], e[order - 1][2],
           observed_order(e[order - 1][0], e[order - 1][1]), observed_order(e[order - 1][1], e[order - 1][2]));
-    // Both treatments converge. Order 2 < order 1 is not asserted: as in 2D, the d-weighted face
-    // states lose on the grid-aligned slab (the start-up shock leaving the wall: issue 4, open),
-    // and on the diagonal slab the two are within the noise of the face's staircase at 64 cells.
+    // Both treatments converge. Order 2 < order 1 is not asserted: a shock's error is its smearing,
+    // whatever the boundary (MovingPistonShockWithFirstAndSecondOrderBoundary), and on the diagonal
+    // slab the two are within the noise of the face's staircase at 64 cells.
     for (int order = 1; order <= 2; ++order) {
       EXPECT_LT(e[order - 1][1], e[order - 1][0]) << deg << " order " << order;
       EXPECT_LT(e[order - 1][2], 0.5 * e[order - 1][0]) << deg << " order " << order;
