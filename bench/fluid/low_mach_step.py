@@ -11,6 +11,7 @@ Writes bench/results/low_mach_step_vorticity[_TAG].png. Usage:
 import argparse
 import glob
 import os
+import shutil
 import subprocess
 
 import h5py
@@ -55,6 +56,8 @@ def main():
     out_dir = os.path.join(ROOT, "runs", "low_mach_step_bench")
     cases = [("without the correction", False, 0.0)] + [(f"with the correction, cutoff {c:g}", True, c) for c in a.cutoffs]
     outs = [os.path.join(out_dir, f"{'with' if lm else 'without'}_{c:g}") for _, lm, c in cases]
+    for out in outs:  # no snapshots of an earlier run mixed into this one's
+        shutil.rmtree(out, ignore_errors=True)
     procs = [start(lm, a.cells, a.end, out, c) for (_, lm, c), out in zip(cases, outs)]
     for p in procs:
         if p.wait() != 0:

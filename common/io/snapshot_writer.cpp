@@ -324,6 +324,7 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const UniformGrid
   check_fields(fields);
   const UniformGrid grid = normalized(g);
   check_directory();
+  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
   const std::string name = file_name(count());
   std::string body = uniform_grid_xml(grid);
   write_hdf5_atomically(dir_ / name, [&](Hdf5File& h5) {
@@ -340,6 +341,7 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const Unstructure
   check_fields(fields);
   check_unstructured(g);
   check_directory();
+  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
   const std::string name = file_name(count());
   std::string body = unstructured_grid_xml(g, name);
   write_hdf5_atomically(dir_ / name, [&](Hdf5File& h5) {
@@ -363,6 +365,21 @@ fs::path SnapshotSeries::publish(const std::string& file_name, std::string grid_
     throw;
   }
   return h5_path;
+}
+
+std::size_t remove_numbered_files(const fs::path& dir, std::string_view prefix, std::string_view suffix) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() != prefix.size() + 6 + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix))
+      continue;
+    const std::string_view digits = std::string_view(name).substr(prefix.size(), 6);
+    if (digits.find_first_not_of("0123456789") != std::string_view::npos) continue;
+    std::error_code rm;
+    if (it->is_regular_file(rm) && fs::remove(it->path(), rm)) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace cosim::io

@@ -37,6 +37,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cosim::io {
@@ -80,7 +81,9 @@ class SnapshotSeries {
   // non-empty without '/', ':' or control characters (std::invalid_argument otherwise).
   SnapshotSeries(std::filesystem::path dir, std::string basename);
 
-  // Each call writes one new HDF5 snapshot and rewrites the .xmf; returns the path of the .h5.
+  // Each call writes one new HDF5 snapshot and rewrites the .xmf; returns the path of the .h5. The first
+  // call first removes the snapshots <basename>_NNNNNN.h5 an earlier run left in the directory, so that a
+  // shorter run never leaves a longer one's files behind (the .xmf only ever lists this run's).
   // Throws std::invalid_argument for bad grids/fields and std::runtime_error (naming the file) for I/O errors;
   // a failed write leaves the series (files and count) as it was.
   std::filesystem::path write(double time, std::int64_t step, const UniformGrid& g,
@@ -100,5 +103,9 @@ class SnapshotSeries {
   std::string basename_;
   std::vector<std::string> grids_;  // XDMF <Grid> element of each snapshot written so far
 };
+
+// Removes the regular files <prefix>NNNNNN<suffix> (exactly six digits) from dir: what an earlier run
+// of the same output left there. Returns how many were removed; errors are ignored (best effort).
+std::size_t remove_numbered_files(const std::filesystem::path& dir, std::string_view prefix, std::string_view suffix);
 
 }  // namespace cosim::io

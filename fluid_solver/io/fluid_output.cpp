@@ -52,6 +52,7 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, cons
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
   const std::size_t index = series.count();
   const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, views);
+  if (index == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");  // an earlier run's
   if (!segments.empty())  // the embedded interface of this snapshot (ParaView: CSV reader + Table To Points)
     io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index), segments);
 }

@@ -450,6 +450,27 @@ TEST_F(SnapshotSeriesTest, XdmfListsEverySnapshotWithItsTime) {
                                                       "run_000002.h5", "run_000003.h5"}));
 }
 
+// A second, shorter run into the same directory replaces the first run's series: no snapshot of the
+// longer run is left behind, and files that are not this series' numbered snapshots stay.
+TEST_F(SnapshotSeriesTest, NewRunRemovesTheEarlierRunsSnapshots) {
+  const UniformGrid g{1, {2, 0, 0}, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
+  const auto rho = iota_values(2, 0.0);
+  {
+    SnapshotSeries first(dir_, "run");
+    for (int i = 0; i < 4; ++i) first.write(i, i, g, {{"rho", rho.data(), 1, Center::Cell}});
+  }
+  for (const char* keep : {"run_00001.h5", "run_0000001.h5", "run_00000x.h5", "other_000003.h5", "run_000003.csv"})
+    std::ofstream(dir_ / keep) << "x";
+  SnapshotSeries second(dir_, "run");
+  second.write(0.5, 0, g, {{"rho", rho.data(), 1, Center::Cell}});
+  EXPECT_EQ(files_in(dir_), (std::vector<std::string>{"other_000003.h5", "run.xmf", "run_000000.h5", "run_0000001.h5",
+                                                      "run_000003.csv", "run_00000x.h5", "run_00001.h5"}));
+  EXPECT_EQ(count_occurrences(read_text(second.xdmf_path()), "<Time "), 1u);
+  EXPECT_EQ(Hdf5File(dir_ / "run_000000.h5", Hdf5File::Mode::ReadOnly).read_double_attribute("/", "time"),
+            std::vector<double>{0.5});
+  EXPECT_EQ(cosim::io::remove_numbered_files(dir_, "run_", ".csv"), 1u);
+}
+
 TEST_F(SnapshotSeriesTest, MissingDirectoryThrowsWithPath) {
   const fs::path missing = dir_ / "not_there";
   SnapshotSeries series(missing, "run");
