@@ -86,9 +86,11 @@ class Solver final : public FluidSimulation {
     double smax = 0.0;
     const double* Wp[Lay::kPrim];
     for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
+    const std::uint8_t* kind = emb_.active ? emb_.kind.data() : nullptr;
     for_each_row([&](std::size_t base, int len, double& acc) {
       for (int i = 0; i < len; ++i) {
         const std::size_t c = base + i;
+        if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
         for (int k = 0; k < NP; ++k) {
           double s = 0;
           const double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);

@@ -4,7 +4,8 @@
 //   solid-cut  phi_C <  0, some phi_N > 0   (the paper's "some phi_N < 0" read as: the cut cell
 //                                            whose centre is in the solid)
 //   ghost      phi_C <  0, no phi_N > 0, and a flow (fluid / fluid-cut) cell within
-//              `ghost_layers` cells (Chebyshev distance, the MUSCL reach of the solver)
+//              `ghost_layers` cells along a grid line (the MUSCL reach of the solver, whose
+//              stencils are one-dimensional per direction; diagonal neighbours are never read)
 //   solid      the rest of the body (no work).
 // Zero convention: a centre with phi_C = 0 is a flow cell ("the surface belongs to the fluid");
 // a node with phi_N = 0 cuts nothing by itself (a cell is cut only by a strict sign change), where zero
@@ -19,6 +20,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "fluid_solver/core/embedded_state.h"
@@ -62,25 +64,26 @@ CategoryCounts categorize(const LevelSet<DIM>& centres, const LevelSet<DIM>& nod
     if (k == kFluid) k = kFluidCut, ++counts.promoted;
     else if (k == kSolid) k = kSolidCut, ++counts.promoted;
   }
-  // Ghost cells: a solid centre within ghost_layers cells of a flow centre is closer than
-  // ghost_layers * |dx| to the surface, so only band cells with |phi| below that are candidates.
-  double reach2 = 0;
-  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) reach2 += C.dx[d] * C.dx[d];
-  const double reach = ghost_layers * std::sqrt(reach2) * (1 + 1e-12);
-  const int G = ghost_layers;
+  // Ghost cells: a solid centre within ghost_layers cells of a flow centre along a grid line (the
+  // solver's stencils are one-dimensional per direction) is closer than ghost_layers * dx_max to the
+  // surface, so only band cells with |phi| below that are candidates.
+  double hmax = 0;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) hmax = std::max(hmax, C.dx[d]);
+  const double reach = ghost_layers * hmax * (1 + 1e-12);
   for (const auto& b : centres.band) {
     if (category[b.index] != kSolid || -centres.phi[b.index] > reach) continue;
     const auto I = C.ijk(b.index);
     bool near_flow = false;
-    for (int k = (DIM > 2 ? -G : 0); k <= (DIM > 2 ? G : 0) && !near_flow; ++k)
-      for (int j = (DIM > 1 ? -G : 0); j <= (DIM > 1 ? G : 0) && !near_flow; ++j)
-        for (int i = -G; i <= G; ++i) {
-          if (!C.inside(I[0] + i, I[1] + j, I[2] + k)) continue;
-          if (centres.phi[C.index(I[0] + i, I[1] + j, I[2] + k)] >= 0) {
-            near_flow = true;
-            break;
-          }
+    for (int d = 0; d < DIM && !near_flow; ++d)
+      for (int step = -ghost_layers; step <= ghost_layers; ++step) {
+        std::array<int, 3> J = I;
+        J[static_cast<std::size_t>(d)] += step;
+        if (step == 0 || !C.inside(J[0], J[1], J[2])) continue;
+        if (centres.phi[C.index(J[0], J[1], J[2])] >= 0) {
+          near_flow = true;
+          break;
         }
+      }
     if (near_flow) category[b.index] = kGhost;
   }
   for (const auto& b : centres.band) {

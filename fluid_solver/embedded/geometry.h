@@ -31,6 +31,7 @@ struct GeometryOptions {
   // it. On other sides a face that lies in the boundary plane with its solid inside the domain is the domain
   // wall already: it gives no segments and no closest face inside the domain (domain_wall_faces()).
   std::array<bool, 3> periodic{false, false, false};
+  bool flat_face_prisms = true;  // faces inside a flat region scan only their prism (signed_distance.h); off: for benchmarks
 };
 
 // Faces of s that lie in a non-periodic boundary plane of the domain with their normal pointing out of it
@@ -118,21 +119,18 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   const auto t1 = clock::now();
   clip_surface(g, s, topo, e.segments, e.segment_points, e.work.clip_tests, &skip);
   const auto t2 = clock::now();
-  // Band: at least the ghost reach (ghost centres are up to ghost_layers*|dx| from the surface).
-  double hmax = 0, diag2 = 0;
-  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) {
-    hmax = std::max(hmax, g.dx[d]);
-    diag2 += g.dx[d] * g.dx[d];
-  }
-  e.band_width = std::max(opt.band_cells * hmax, (opt.ghost_layers + 0.25) * std::sqrt(diag2));
+  // Band: at least the ghost reach (ghost centres are up to ghost_layers * dx_max from the surface).
+  double hmax = 0;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) hmax = std::max(hmax, g.dx[d]);
+  e.band_width = std::max(opt.band_cells, opt.ghost_layers + 0.25) * hmax;
   // Node band >= 1.5 dx keeps the row-fill sign robust (band points next to a gap are >= dx/2 away).
   const double node_band = std::min(e.band_width, std::max(opt.node_band_cells, 1.5) * hmax);
   e.category.resize(g.total);
   e.centres.lattice = centre_lattice(g);
   e.nodes.lattice = node_lattice(g);
   compute_level_set(e.centres, s, topo, e.band_width, e.work.distance_tests, &e.category, static_cast<std::uint8_t>(CellKind::Fluid),
-                    static_cast<std::uint8_t>(CellKind::Solid), &skip);
-  compute_level_set(e.nodes, s, topo, node_band, e.work.distance_tests, nullptr, 0, 0, &skip);
+                    static_cast<std::uint8_t>(CellKind::Solid), &skip, opt.flat_face_prisms);
+  compute_level_set(e.nodes, s, topo, node_band, e.work.distance_tests, nullptr, 0, 0, &skip, opt.flat_face_prisms);
   e.work.band_centres = e.centres.band.size();
   e.work.band_nodes = e.nodes.band.size();
   const auto t3 = clock::now();

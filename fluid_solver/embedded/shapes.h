@@ -138,6 +138,51 @@ inline Surface make_box(int dim, const Vec3& lo, const Vec3& hi, const Vec3& vel
   return s;
 }
 
+// The boundary of a structured solid mesh of the box [lo, hi] with n[d] cells along d, as a solid solver sends it
+// (many coplanar faces): 2D segments, counter-clockwise; 3D quads (two triangles each), counter-clockwise seen
+// from outside. Rotated by rotation_deg about z through the box centre.
+inline Surface make_subdivided_box(int dim, const Vec3& lo, const Vec3& hi, const std::array<int, 3>& n, double rotation_deg = 0) {
+  if (dim < 2 || dim > 3 || n[0] < 1 || n[1] < 1 || (dim == 3 && n[2] < 1))
+    throw std::runtime_error("embedded shape: subdivided box needs dim 2 or 3 and at least one cell per direction");
+  Surface s;
+  s.dim = dim;
+  std::map<std::array<int, 3>, int> id;
+  auto vertex = [&](int i, int j, int k) {
+    const auto [it, fresh] = id.try_emplace({i, j, k}, static_cast<int>(s.vertices.size()));
+    if (fresh) {
+      Vec3 x{0, 0, 0};
+      const int ijk[3] = {i, j, k};
+      for (std::size_t d = 0; d < static_cast<std::size_t>(dim); ++d) x[d] = lo[d] + (hi[d] - lo[d]) * ijk[d] / n[d];
+      add_vertex(s, x);
+    }
+    return it->second;
+  };
+  if (dim == 2) {  // counter-clockwise
+    for (int i = 0; i < n[0]; ++i) s.faces.push_back({vertex(i, 0, 0), vertex(i + 1, 0, 0), -1});
+    for (int j = 0; j < n[1]; ++j) s.faces.push_back({vertex(n[0], j, 0), vertex(n[0], j + 1, 0), -1});
+    for (int i = n[0]; i > 0; --i) s.faces.push_back({vertex(i, n[1], 0), vertex(i - 1, n[1], 0), -1});
+    for (int j = n[1]; j > 0; --j) s.faces.push_back({vertex(0, j, 0), vertex(0, j - 1, 0), -1});
+  } else {  // quads counter-clockwise seen from outside
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        add_quad(s, vertex(n[0], j, k), vertex(n[0], j + 1, k), vertex(n[0], j + 1, k + 1), vertex(n[0], j, k + 1));
+        add_quad(s, vertex(0, j, k), vertex(0, j, k + 1), vertex(0, j + 1, k + 1), vertex(0, j + 1, k));
+      }
+    for (int i = 0; i < n[0]; ++i)
+      for (int k = 0; k < n[2]; ++k) {
+        add_quad(s, vertex(i, n[1], k), vertex(i, n[1], k + 1), vertex(i + 1, n[1], k + 1), vertex(i + 1, n[1], k));
+        add_quad(s, vertex(i, 0, k), vertex(i + 1, 0, k), vertex(i + 1, 0, k + 1), vertex(i, 0, k + 1));
+      }
+    for (int i = 0; i < n[0]; ++i)
+      for (int j = 0; j < n[1]; ++j) {
+        add_quad(s, vertex(i, j, n[2]), vertex(i + 1, j, n[2]), vertex(i + 1, j + 1, n[2]), vertex(i, j + 1, n[2]));
+        add_quad(s, vertex(i, j, 0), vertex(i, j + 1, 0), vertex(i + 1, j + 1, 0), vertex(i + 1, j, 0));
+      }
+  }
+  rotate_z(s, 0.5 * (lo + hi), rotation_deg);
+  return s;
+}
+
 // Forward-facing step (paper 9.1): the block [lo, hi]; in 2D a rectangle, in 3D the rectangle
 // profile extruded over [lo_z, hi_z]. Let it reach below the domain floor: the part outside the
 // padded grid is clipped away, so the floor under it needs no surface.

@@ -64,6 +64,38 @@ struct LevelSet {
   const BandPoint* at(std::size_t idx) const { return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])]; }
 };
 
+// A face inside a flat region: in 3D its three edges, in 2D its two vertices, join it to faces with the same
+// normal (to 1e-8 in the cosine). A point whose closest surface point lies on such a face, or on one of its
+// flat edges or vertices, lies on that point's normal, so within the face's prism (the face swept along its
+// normal); a closest point on a bent edge or vertex is reached from the (fully grown) faces at that edge or
+// vertex. Flat faces therefore scan only their prism: on a body made of many coplanar faces (a solid mesh's
+// boundary) the band costs its area, not its area plus a band-wide rim around every face.
+inline bool flat_face(const Surface& s, const SurfaceTopology& topo, std::size_t f) {
+  constexpr double kFlat2 = 4.0 * (1.0 - 1e-8);  // |n1 + n2|^2 = 2 + 2 cos(angle) for unit normals
+  if (s.dim == 3) {
+    for (const int e : topo.face_edges[f]) {
+      const Vec3& en = topo.edge_normal[static_cast<std::size_t>(e)];
+      if (dot(en, en) < kFlat2) return false;
+    }
+    return true;
+  }
+  if (s.dim == 2) {
+    for (int k = 0; k < 2; ++k) {
+      const Vec3& vn = topo.vertex_normal[static_cast<std::size_t>(s.faces[f][static_cast<std::size_t>(k)])];
+      if (dot(vn, vn) < kFlat2) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
+// Growth of a flat face's bounding box that holds its prism of half-height `band_width`, plus 1e-3 of the band
+// for the near-flat joints (an angle below 1.5e-4 rad leaves a gap below 1.5e-4 of the band).
+inline Vec3 prism_growth(const Vec3& n, double band_width) {
+  const double margin = 1e-3 * band_width;
+  return Vec3{band_width * std::abs(n[0]) + margin, band_width * std::abs(n[1]) + margin, band_width * std::abs(n[2]) + margin};
+}
+
 // Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
 // If `category` is given (centre lattice), the out-of-band cells are set to `fluid` / `solid` there.
 // Reusing `ls` from the previous cycle (same lattice) clears only the previous band; the dense row fill
@@ -71,7 +103,7 @@ struct LevelSet {
 template <int DIM>
 void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width, std::size_t& tests,
                        std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0,
-                       const DomainWallFaces* walls = nullptr) {
+                       const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
   const Lattice<DIM>& L = ls.lattice;
   const double bw2 = band_width * band_width;
   bool incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
@@ -93,9 +125,10 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
   }
   ls.phi.resize(L.size);  // every entry is written below (band points, then the row fill)
   ls.band.clear();
-  const Vec3 grow{band_width, band_width, band_width};
+  const Vec3 grow_all{band_width, band_width, band_width};
   const int nid = DIM == 1 ? 1 : DIM;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const Vec3 grow = flat_prisms && flat_face(s, topo, f) ? prism_growth(topo.face_normal[f], band_width) : grow_all;
     const bool wall_face = walls && walls->skips(f);  // on the domain wall: reaches only the ghost layers
     const auto& fc = s.faces[f];
     Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/scratch_dir.h"
+
 namespace cosim::test {
 
 namespace fs = std::filesystem;
@@ -28,9 +30,7 @@ inline std::string read_text(const fs::path& p) {
 }
 
 inline fs::path run_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("cosim_coupled_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
+  return cosim::test::scratch_path("coupled_" + name);
 }
 
 // `cosim run SCENE --out DIR --quiet ARGS`; returns the exit code (stdout and stderr in DIR.log).

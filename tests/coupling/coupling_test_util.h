@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "launcher/process.h"
+#include "tests/support/scratch_dir.h"
 
 namespace cosim::test {
 
@@ -23,8 +24,7 @@ inline fs::path python_dir() { return fs::path(COSIM_BINARY_DIR) / "python"; }
 
 // A fresh directory for one test.
 inline fs::path test_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("cosim_coupling_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
+  const fs::path d = cosim::test::scratch_path("coupling_" + name);
   fs::create_directories(d);
   return d;
 }

@@ -8,6 +8,7 @@
 
 #include "fluid_solver/core/scene.h"
 #include "fluid_solver/core/simulation.h"
+#include "tests/support/scratch_dir.h"
 
 namespace cosim::fluid::test {
 namespace {
@@ -76,7 +77,7 @@ TEST(SceneValidation, OverridesApply) {
 
 // Runs the real executable; returns the exit code and fills stderr.
 int run_solver(const std::string& scene_text, const std::filesystem::path& out, std::string& err) {
-  const auto dir = std::filesystem::temp_directory_path() / ("cosim_bad_input_" + std::to_string(::getpid()));
+  const auto dir = cosim::test::scratch_path("bad_input");
   std::filesystem::create_directories(dir);
   const auto scene = dir / "scene.yaml";
   std::ofstream(scene) << scene_text;
@@ -89,8 +90,7 @@ int run_solver(const std::string& scene_text, const std::filesystem::path& out, 
 }
 
 TEST(FluidSolverExecutable, BadInputExitsNonZeroWithMessage) {
-  const auto out = std::filesystem::temp_directory_path() / ("cosim_bad_out_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(out);
+  const auto out = cosim::test::scratch_path("bad_out");
   std::string err;
   EXPECT_EQ(run_solver(replace(kGood, "cfl: 0.4", "cfl: -1"), out, err), 2);
   EXPECT_NE(err.find("scene.yaml:5: fluid.time.cfl: expected a number in (0, 1], got '-1'"), std::string::npos) << err;
@@ -121,8 +121,7 @@ fluid:
         state: {rho: 1000.0, velocity: [2000.0], p: 1.0e5}
   output: {interval: 1.0e-6}
 )";
-  const auto out = std::filesystem::temp_directory_path() / ("cosim_blowup_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(out);
+  const auto out = cosim::test::scratch_path("blowup");
   std::string err;
   const int code = run_solver(scene, out, err);
   EXPECT_EQ(code, 3) << err;

@@ -7,6 +7,7 @@
 
 #include "common/exact/exact_riemann.h"
 #include "fluid_test_utils.h"
+#include "tests/support/scratch_dir.h"
 
 namespace cosim::fluid::test {
 namespace {
@@ -372,7 +373,7 @@ namespace {
 // box must keep the gas mass (the boundary is not exactly conservative: we measure how close) and
 // give the gas the work p* A w t of the exact piston pressure.
 TEST(EmbeddedFlow, SummaryReportsTheBoundaryExchange) {
-  const auto dir = std::filesystem::temp_directory_path() / ("cosim_emb_summary_" + std::to_string(::getpid()));
+  const auto dir = cosim::test::scratch_path("emb_summary");
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "scene.yaml") << R"(
 fluid:
