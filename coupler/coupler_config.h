@@ -22,7 +22,7 @@ struct CouplerConfig {
   coupling::Scheme scheme = coupling::Scheme::Pipelined;
   double t_end = 0.0;
   long max_cycles = 1000000000L;
-  double dt_max = 0.0;  // 0: no limit
+  double dt_max = 0.0;               // 0: no limit
   std::vector<double> output_times;  // sorted, ends with t_end
   double timeout = 5.0;
   double heartbeat_interval = 0.5;

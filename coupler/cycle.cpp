@@ -19,9 +19,7 @@ using coupling::Role;
 namespace pb = coupling::pb;
 
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 pb::Envelope envelope(const Hub& hub, long cycle, double t) {
   return coupling::make_envelope(Role::Coupler, hub.token(), cycle, t);
@@ -120,8 +118,8 @@ struct Loop {
     pb::Envelope to_fluid = work([&] {
       coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
       if (samples.count != faces.count)
-        hub.reject(Role::Fluid, fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count,
-                                            faces.count));
+        hub.reject(Role::Fluid,
+                   fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count, faces.count));
       if (cfg.pressure_predictor) predictor.apply(samples, t, dt);
       last_states = interface_conditions(faces, samples, cfg.mode);
       pb::Envelope e = envelope(hub, n, t + dt);
@@ -180,8 +178,7 @@ struct Loop {
         break;
       }
       dt = choose_dt(proposal, cfg.dt_max, t, cfg.output_times[next_out]);
-      if (!(dt > 0))
-        throw coupling::ProtocolError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s", dt, t));
+      if (!(dt > 0)) throw coupling::ProtocolError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s", dt, t));
     }
     history.progress(sum.cycles, t, cfg.t_end, true);
     hub.stop_all(sum.message, false);

@@ -41,13 +41,15 @@ void History::record(long cycle, double time, double dt, const coupling::Faces& 
     pressure += a * p;
   }
   const double inv = area > 0 ? 1.0 / area : 0.0;
-  hist_ << fmt::format("{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
-                       cycle, time, dt, force[0], force[1], force[2], vel[0] * inv, vel[1] * inv, vel[2] * inv,
-                       centre[0] * inv, centre[1] * inv, centre[2] * inv, pressure * inv);
+  hist_ << fmt::format(
+      "{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n", cycle,
+      time, dt, force[0], force[1], force[2], vel[0] * inv, vel[1] * inv, vel[2] * inv, centre[0] * inv,
+      centre[1] * inv, centre[2] * inv, pressure * inv);
 }
 
 void History::record_timing(long cycle, const CycleTiming& t) {
-  timing_ << fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid, t.coupler, t.comm());
+  timing_ << fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid, t.coupler,
+                         t.comm());
 }
 
 void History::progress(long cycle, double time, double t_end, bool force) {
@@ -69,22 +71,22 @@ void History::snapshot(long cycle, double time, const coupling::Faces& f, const 
   const bool polygons = (f.dim == 2 && f.nodes_per_face == 2) || (f.dim == 3 && f.nodes_per_face == 4);
   if (!polygons || f.count == 0 || st.count != f.count) return;
   const std::vector<std::int64_t> conn(f.face_vertex.begin(), f.face_vertex.end());
-  const io::UnstructuredGrid g{f.dim, f.vertex_position.data(), static_cast<std::int64_t>(f.vertex_position.size() / f.dim),
-                               conn.data(), f.count, f.nodes_per_face};
+  const io::UnstructuredGrid g{
+      f.dim,   f.vertex_position.data(), static_cast<std::int64_t>(f.vertex_position.size() / f.dim), conn.data(),
+      f.count, f.nodes_per_face};
   std::vector<double> wetted(f.count, 1.0), p(f.count, 0.0), u(f.count, 0.0);
   for (int i = 0; i < f.count; ++i) {
     if (!st.face_wetted.empty()) wetted[i] = st.face_wetted[i] ? 1.0 : 0.0;
     if (!st.face_pressure.empty()) p[i] = st.face_pressure[i];
     if (!st.face_normal_velocity.empty()) u[i] = st.face_normal_velocity[i];
   }
-  const std::vector<io::FieldView> fields = {
-      {"pressure", p.data(), 1, io::Center::Cell},
-      {"normal_velocity", u.data(), 1, io::Center::Cell},
-      {"normal_stress", f.normal_stress.data(), 1, io::Center::Cell},
-      {"impedance", f.impedance.data(), 1, io::Center::Cell},
-      {"wetted", wetted.data(), 1, io::Center::Cell},
-      {"normal", f.normal.data(), f.dim, io::Center::Cell},
-      {"velocity", f.velocity.data(), f.dim, io::Center::Cell}};
+  const std::vector<io::FieldView> fields = {{"pressure", p.data(), 1, io::Center::Cell},
+                                             {"normal_velocity", u.data(), 1, io::Center::Cell},
+                                             {"normal_stress", f.normal_stress.data(), 1, io::Center::Cell},
+                                             {"impedance", f.impedance.data(), 1, io::Center::Cell},
+                                             {"wetted", wetted.data(), 1, io::Center::Cell},
+                                             {"normal", f.normal.data(), f.dim, io::Center::Cell},
+                                             {"velocity", f.velocity.data(), f.dim, io::Center::Cell}};
   interface_.write(time, cycle, g, fields);
 }
 

@@ -18,9 +18,7 @@ using coupling::Role;
 namespace pb = coupling::pb;
 
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 const std::array<Role, 2> kRoles{Role::Fluid, Role::Solid};
 // A pipelined solid runs one step ahead (faces, proposal); more than this waiting means a peer ignores the cycle.
 constexpr std::size_t kMaxAhead = 16;
@@ -40,8 +38,7 @@ Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(tra
 Hub::~Hub() {
   try {
     sock_.set_linger(1000);  // deliver the last Stop / Error
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 void Hub::reply_error(const std::string& id, const std::string& reason) {
@@ -69,7 +66,8 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
     return fmt::format("scene hash {} differs from the coupler's {} (different scene file or --set overrides)",
                        hello.scene_hash(), opt_.scene_hash);
   const Role r = coupling::from_pb(hello.role());
-  if (peer(r).connected) return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));
+  if (peer(r).connected)
+    return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));
   return "";
 }
 
@@ -198,8 +196,7 @@ void Hub::handshake() {
                                  opt_.connect_timeout, bound_));
     }
     beat_and_check();
-    if (poll_once(50, in))
-      fail_peer(in.from, fmt::format("sent {} before the run started", coupling::body_name(in.e)));
+    if (poll_once(50, in)) fail_peer(in.from, fmt::format("sent {} before the run started", coupling::body_name(in.e)));
   }
   handshake_done_ = true;
   if (transcript_)
@@ -214,7 +211,8 @@ void Hub::send(Role to, pb::Envelope& e) {
   time_ = e.header().time();
   const Peer& p = peer(to);
   if (!sock_.send({p.id, coupling::encode(e)}, 2000))
-    throw PeerLost(fmt::format("{} cannot be reached (connection closed) for {}", p.describe(to), coupling::body_name(e)));
+    throw PeerLost(
+        fmt::format("{} cannot be reached (connection closed) for {}", p.describe(to), coupling::body_name(e)));
   if (transcript_) transcript_->record("->", to, e);
 }
 
@@ -230,9 +228,10 @@ pb::Envelope Hub::next_from(Role from, const std::string& waiting_for) {
     if (in.from == from) return std::move(in.e);
     auto& other = inbox_[index(in.from)];
     if (other.size() >= kMaxAhead)
-      fail_peer(in.from, fmt::format("sent {} messages ahead of the cycle (last: {}) while the coupler waits for {} "
-                                     "from the {}",
-                                     other.size() + 1, coupling::body_name(in.e), waiting_for, coupling::role_name(from)));
+      fail_peer(in.from,
+                fmt::format("sent {} messages ahead of the cycle (last: {}) while the coupler waits for {} "
+                            "from the {}",
+                            other.size() + 1, coupling::body_name(in.e), waiting_for, coupling::role_name(from)));
     other.push_back(std::move(in.e));
   }
 }
@@ -264,8 +263,7 @@ void Hub::stop_all(const std::string& reason, bool failure) noexcept {
       e.mutable_stop()->set_failure(failure);
       sock_.send({p.id, coupling::encode(e)}, 200);
       if (transcript_) transcript_->record("->", r, e);
-    } catch (...) {
-    }
+    } catch (...) {}
   }
 }
 

@@ -16,7 +16,7 @@
 namespace cosim::coupler {
 
 struct HubOptions {
-  std::string endpoint;    // to bind: ipc://path or tcp://host:port (port * = any)
+  std::string endpoint;  // to bind: ipc://path or tcp://host:port (port * = any)
   std::string token;
   std::string scene_hash;
   coupling::Mode mode = coupling::Mode::Impedance;
@@ -32,9 +32,9 @@ struct Peer {
   std::string program;
   long pid = 0;
   std::vector<std::string> phase_names;
-  double last_seen = 0;  // steady clock [s]
-  double busy = 0;       // sum of Header.busy_seconds received [s]
-  coupling::pb::Envelope hello, welcome;  // kept for the transcript
+  double last_seen = 0;                          // steady clock [s]
+  double busy = 0;                               // sum of Header.busy_seconds received [s]
+  coupling::pb::Envelope hello, welcome;         // kept for the transcript
   std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"
 };
 

@@ -48,9 +48,9 @@ coupling::InterfaceStates interface_conditions(const coupling::Faces& faces, con
     double sum_a = 0.0, sum_p = 0.0, sum_v = 0.0;
     for (int k = 0; k < np; ++k) {
       const std::size_t i = static_cast<std::size_t>(f) * np + k;
-      const PointState st = wet ? interface_point(mode, v_s, sigma_s, z_s, s.normal_velocity[i], s.pressure[i],
-                                                  s.impedance[i])
-                                : PointState{v_s, -sigma_s};
+      const PointState st =
+          wet ? interface_point(mode, v_s, sigma_s, z_s, s.normal_velocity[i], s.pressure[i], s.impedance[i])
+              : PointState{v_s, -sigma_s};
       out.pressure[i] = st.pressure;
       out.normal_velocity[i] = st.velocity;
       sum_a += s.alpha[i];

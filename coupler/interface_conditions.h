@@ -4,7 +4,8 @@
 // per phase k: v_f = u_k . n, p_f = p_k (sigma_f = -p_f), z_f = rho_k c_k. With w_s = z_s/(z_f+z_s), w_f = 1-w_s:
 //   impedance      (eqs. 21-22):  v_I = w_f v_f + w_s v_s,                       p_I = w_s p_f + w_f p_s
 //   characteristic (eqs. 17, 19): v_I = ... + (sigma_f - sigma_s)/(z_f+z_s),     p_I = ... - z_f w_s (v_f - v_s)
-//   standard:                     v_I = v_s (fluid gets the wall velocity),     p_I = p_f (solid gets the fluid pressure)
+//   standard:                     v_I = v_s (fluid gets the wall velocity),     p_I = p_f (solid gets the fluid
+//   pressure)
 // with p_s = -sigma_s. The solid gets the volume average over phases (paper section 8, step 1):
 //   face_pressure = sum_k alpha_k p_I,k / sum_k alpha_k, face_normal_velocity likewise.
 // Unwetted faces (no fluid next to them): per phase v_I = v_s, p_I = p_s; face_pressure = 0 (no load).

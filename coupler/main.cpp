@@ -2,10 +2,10 @@
 // Reads the scene's `coupling:` section, binds EP, handshakes the fluid and solid solvers and runs the coupled
 // cycle (coupler/cycle.h). Exit codes: 0 completed, 2 bad input, 4 I/O, 5 peer or protocol failure,
 // 130 interrupted.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -31,8 +31,10 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
   j["message"] = s.message;
   j["cycles"] = s.cycles;
   j["time"] = s.time;
-  j["per_cycle_seconds"] = {{"wall", s.total.wall / n},       {"solid", s.total.solid / n},
-                            {"fluid", s.total.fluid / n},     {"coupler", s.total.coupler / n},
+  j["per_cycle_seconds"] = {{"wall", s.total.wall / n},
+                            {"solid", s.total.solid / n},
+                            {"fluid", s.total.fluid / n},
+                            {"coupler", s.total.coupler / n},
                             {"comm", s.total.comm() / n}};
   j["comm_fraction"] = s.total.wall > 0 ? s.total.comm() / s.total.wall : 0.0;
   std::ofstream(dir / "coupler_summary.json") << j.dump(2) << "\n";
@@ -53,9 +55,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "only warnings and errors");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }
   auto logger = spdlog::stderr_color_mt("coupler");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("[coupler] %l: %v");
@@ -93,11 +93,12 @@ int main(int argc, char** argv) {
     write_summary(out, s, cfg.scheme);
     if (s.code == 0) {
       const double n = std::max<long>(s.cycles, 1);
-      spdlog::info("{}; per cycle: wall {:.3g} ms, solid {:.3g} ms, fluid {:.3g} ms, coupler {:.3g} ms, "
-                   "communication {:.3g} ms ({:.1f}% of wall)",
-                   s.message, 1e3 * s.total.wall / n, 1e3 * s.total.solid / n, 1e3 * s.total.fluid / n,
-                   1e3 * s.total.coupler / n, 1e3 * s.total.comm() / n,
-                   s.total.wall > 0 ? 100.0 * s.total.comm() / s.total.wall : 0.0);
+      spdlog::info(
+          "{}; per cycle: wall {:.3g} ms, solid {:.3g} ms, fluid {:.3g} ms, coupler {:.3g} ms, "
+          "communication {:.3g} ms ({:.1f}% of wall)",
+          s.message, 1e3 * s.total.wall / n, 1e3 * s.total.solid / n, 1e3 * s.total.fluid / n,
+          1e3 * s.total.coupler / n, 1e3 * s.total.comm() / n,
+          s.total.wall > 0 ? 100.0 * s.total.comm() / s.total.wall : 0.0);
     }
     return s.code;
   } catch (const std::exception& e) {

@@ -29,7 +29,8 @@ void round_all(Message& m) {
     const FieldDescriptor* f = d->field(i);
     if (f->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE) {
       if (f->is_repeated()) {
-        for (int j = 0; j < r->FieldSize(m, f); ++j) r->SetRepeatedDouble(&m, f, j, round6(r->GetRepeatedDouble(m, f, j)));
+        for (int j = 0; j < r->FieldSize(m, f); ++j)
+          r->SetRepeatedDouble(&m, f, j, round6(r->GetRepeatedDouble(m, f, j)));
       } else if (r->HasField(m, f)) {
         r->SetDouble(&m, f, round6(r->GetDouble(m, f)));
       }

@@ -4,8 +4,8 @@
 
 int main(int argc, char** argv) {
   cosim::app::RunOptions opt;
-  if (auto rc = cosim::app::parse_command_line(argc, argv, "fluid_solver",
-                                                "multiphase DEM Godunov solver on a Cartesian mesh (standalone run)", opt))
+  if (auto rc = cosim::app::parse_command_line(
+          argc, argv, "fluid_solver", "multiphase DEM Godunov solver on a Cartesian mesh (standalone run)", opt))
     return *rc;
   return cosim::fluid::run_fluid(opt);
 }

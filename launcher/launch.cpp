@@ -29,9 +29,7 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 // Progress from the coupler's progress.txt ("cycle t t_end").
 std::string progress_text(const fs::path& file, double elapsed) {
@@ -142,19 +140,19 @@ int run(const LaunchOptions& opt) {
   const auto with_common = [&](std::vector<std::string> argv, const char* sub, bool client) {
     argv.push_back(scene.string());
     argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
-    if (coupled) {
-      argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint, "--token", token});
-    }
+    if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint, "--token", token}); }
     for (const auto& o : opt.overrides) argv.insert(argv.end(), {"--set", o});
     if (opt.quiet && !client) argv.push_back("--quiet");
     return argv;
   };
   std::vector<Child> children;
   if (coupled)
-    children.push_back({"coupler", with_common(command(eff.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
+    children.push_back(
+        {"coupler", with_common(command(eff.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
   children.push_back({"fluid", with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
   if (coupled)
-    children.push_back({"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
+    children.push_back(
+        {"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
 
   nlohmann::json launch;
   launch["endpoint"] = coupled ? endpoint : "";
@@ -229,8 +227,9 @@ int run(const LaunchOptions& opt) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   if (tty && !opt.quiet) std::cerr << "\n";
-  if (!opt.quiet) std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n",
-                                           now_s() - start_time, out.string());
+  if (!opt.quiet)
+    std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n", now_s() - start_time,
+                             out.string());
   return 0;
 }
 

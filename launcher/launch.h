@@ -11,12 +11,12 @@ namespace cosim::launcher {
 
 struct LaunchOptions {
   std::string scene;
-  std::filesystem::path out;            // run directory (default runs/<scene name>)
-  std::vector<std::string> overrides;   // --set
+  std::filesystem::path out;           // run directory (default runs/<scene name>)
+  std::vector<std::string> overrides;  // --set
   bool tcp = false;
   std::string tcp_host = "127.0.0.1";
   std::string fluid_cmd, solid_cmd, coupler_cmd;  // empty: <dir of cosim>/fluid_solver etc.; split on spaces
-  std::filesystem::path bin_dir;        // where the default executables are
+  std::filesystem::path bin_dir;                  // where the default executables are
   bool quiet = false;
 };
 

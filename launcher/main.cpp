@@ -2,8 +2,8 @@
 //                      [--coupler-exe CMD] [--quiet]
 #include <CLI/CLI.hpp>
 
-#include <filesystem>
 #include <unistd.h>
+#include <filesystem>
 
 #include "launcher/launch.h"
 
@@ -25,9 +25,7 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", o.quiet, "no progress line");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }
   o.tcp = tcp->count() > 0;
   if (o.tcp && o.tcp_host.empty()) o.tcp_host = "127.0.0.1";
   o.out = out;

@@ -21,7 +21,8 @@ std::string Child::describe() const { return fmt::format("{} ({}, pid {})", name
 void start(Child& c) {
   if (c.argv.empty()) throw std::runtime_error(c.name + ": no command");
   const int fd = ::open(c.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(fmt::format("{}: cannot write the log: {}", c.log.string(), std::strerror(errno)));
+  if (fd < 0)
+    throw std::runtime_error(fmt::format("{}: cannot write the log: {}", c.log.string(), std::strerror(errno)));
   std::vector<char*> args;
   for (auto& a : c.argv) args.push_back(a.data());
   args.push_back(nullptr);
@@ -32,8 +33,8 @@ void start(Child& c) {
     throw std::runtime_error(fmt::format("{}: fork failed: {}", c.name, std::strerror(errno)));
   }
   if (pid == 0) {
-    ::setpgid(0, 0);                      // own group: a terminal's Ctrl-C reaches only the launcher
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);   // no orphans if the launcher dies
+    ::setpgid(0, 0);                     // own group: a terminal's Ctrl-C reaches only the launcher
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // no orphans if the launcher dies
     if (::getppid() != parent) ::_exit(127);
     ::dup2(fd, STDOUT_FILENO);
     ::dup2(fd, STDERR_FILENO);

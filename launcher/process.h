@@ -12,13 +12,13 @@
 namespace cosim::launcher {
 
 struct Child {
-  std::string name;                // "fluid", "solid", "coupler"
-  std::vector<std::string> argv;   // argv[0]: the executable (searched in PATH when it has no '/')
+  std::string name;               // "fluid", "solid", "coupler"
+  std::vector<std::string> argv;  // argv[0]: the executable (searched in PATH when it has no '/')
   std::filesystem::path log;
   pid_t pid = -1;
   bool running = false;
-  int exit_code = 0;               // 128 + signal when killed by a signal
-  std::string describe() const;    // "fluid (build/bin/fluid_solver, pid 123)"
+  int exit_code = 0;             // 128 + signal when killed by a signal
+  std::string describe() const;  // "fluid (build/bin/fluid_solver, pid 123)"
 };
 
 // Starts c (throws std::runtime_error naming the executable when fork/exec setup fails; a failing exec makes

@@ -5,7 +5,7 @@
 int main(int argc, char** argv) {
   cosim::app::RunOptions opt;
   if (auto rc = cosim::app::parse_command_line(argc, argv, "solid_solver",
-                                                "explicit Lagrange hydro FEM with strength (standalone run)", opt))
+                                               "explicit Lagrange hydro FEM with strength (standalone run)", opt))
     return *rc;
   return cosim::solid::run_solid(opt);
 }

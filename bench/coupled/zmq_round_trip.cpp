@@ -324,8 +324,8 @@ std::string tagged(std::size_t size, std::uint64_t tag) {
         recv();  // InterfaceFaces
         busy_work(static_cast<std::uint64_t>(work[1]));
         d.send({samples}, 5000);
-        d.send({proposal}, 5000);  // from t^n, before the states
-        recv();                    // InterfaceStates
+        d.send({proposal}, 5000);                        // from t^n, before the states
+        recv();                                          // InterfaceStates
         busy_work(static_cast<std::uint64_t>(work[2]));  // the next DtDecision and faces queue up meanwhile
       } else if (fluid) {
         recv();  // InterfaceFaces
@@ -529,17 +529,19 @@ int main(int argc, char** argv) {
     const CycleMessages m = make_cycle_messages(faces);
     const std::size_t b_dec = m.bytes(m.decision), b_faces = m.bytes(m.faces), b_samp = m.bytes(m.samples),
                       b_stf = m.bytes(m.states_fluid), b_prop = m.bytes(m.proposal);
-    const auto wanted = [&](const std::string& p) { return ("," + which + ",").find("," + p + ",") != std::string::npos; };
+    const auto wanted = [&](const std::string& p) {
+      return ("," + which + ",").find("," + p + ",") != std::string::npos;
+    };
     std::vector<Pattern> patterns;
     if (wanted("small"))
       patterns.push_back({"small", "64 B <-> 64 B, one round trip", {{"64 B <-> 64 B", 64, 64}}, count});
     if (wanted("cycle"))
       patterns.push_back({"cycle",
-                        "cycle's 3 round trips (real sizes), per cycle",
-                        {{"decision -> faces", b_dec, b_faces},
-                         {"faces -> samples", b_faces, b_samp},
-                         {"states -> proposal", b_stf, b_prop}},
-                        count});
+                          "cycle's 3 round trips (real sizes), per cycle",
+                          {{"decision -> faces", b_dec, b_faces},
+                           {"faces -> samples", b_faces, b_samp},
+                           {"states -> proposal", b_stf, b_prop}},
+                          count});
     // Pipelined scheme, fluid the slower solver: the only round trip on its path (the next decision and faces
     // are already in its queue when it has advanced).
     if (wanted("cycle_pipelined"))
@@ -552,17 +554,22 @@ int main(int argc, char** argv) {
     for (int w : parse_list(work_list)) {
       if (w <= 0 || !wanted("work")) continue;
       const int n = std::max(100, std::min(count, static_cast<int>(2e6 / (w + 50))));
-      patterns.push_back({fmt::format("work{}", w), fmt::format("64 B, echo works {} us first: round trip - {} us", w, w),
-                          {{"work", 64, 64, static_cast<std::uint64_t>(w)}}, n, 1e-6 * w});
+      patterns.push_back({fmt::format("work{}", w),
+                          fmt::format("64 B, echo works {} us first: round trip - {} us", w, w),
+                          {{"work", 64, 64, static_cast<std::uint64_t>(w)}},
+                          n,
+                          1e-6 * w});
     }
     const double proto = protobuf_seconds(m, std::max(200, count / 10));
     if (!json) {
-      std::printf("bare ZeroMQ DEALER/ROUTER round trips between two processes (fork), wrapper "
-                  "common/coupling/zmq_socket.h; up to %d round trips after %d warm-up\n",
-                  count, warmup);
-      std::printf("message sizes for %d faces (2D, 1 phase): DtDecision %zu B, InterfaceFaces %zu B, FluidSamples "
-                  "%zu B, InterfaceStates %zu B (fluid) / %zu B (solid), DtProposal %zu B\n\n",
-                  faces, b_dec, b_faces, b_samp, b_stf, m.bytes(m.states_solid), b_prop);
+      std::printf(
+          "bare ZeroMQ DEALER/ROUTER round trips between two processes (fork), wrapper "
+          "common/coupling/zmq_socket.h; up to %d round trips after %d warm-up\n",
+          count, warmup);
+      std::printf(
+          "message sizes for %d faces (2D, 1 phase): DtDecision %zu B, InterfaceFaces %zu B, FluidSamples "
+          "%zu B, InterfaceStates %zu B (fluid) / %zu B (solid), DtProposal %zu B\n\n",
+          faces, b_dec, b_faces, b_samp, b_stf, m.bytes(m.states_solid), b_prop);
       std::printf("| transport | pattern | mean [us] | median [us] | p10 [us] | p90 [us] | min [us] |\n");
       std::printf("|---|---|---|---|---|---|---|\n");
     }
@@ -570,8 +577,8 @@ int main(int argc, char** argv) {
     if (transport != "tcp") transports.push_back("ipc");
     if (transport != "ipc") transports.push_back("tcp");
     for (const auto& tr : transports) {
-      const std::string ep = tr == "ipc" ? fmt::format("ipc:///tmp/cosim_zmq_rt_{}.sock", ::getpid())
-                                         : std::string("tcp://127.0.0.1:*");
+      const std::string ep =
+          tr == "ipc" ? fmt::format("ipc:///tmp/cosim_zmq_rt_{}.sock", ::getpid()) : std::string("tcp://127.0.0.1:*");
       for (const auto& pat : patterns) {
         std::string bound;
         auto t = measure(ep, pat.pairs, pat.count, std::min(warmup, pat.count / 5), bound);
@@ -584,14 +591,15 @@ int main(int argc, char** argv) {
           rep.push_back(p.reply);
         }
         if (json) {
-          std::printf("{\"transport\": \"%s\", \"pattern\": \"%s\", \"faces\": %d, \"round_trips\": %zu, "
-                      "\"request_bytes\": [%s], \"reply_bytes\": [%s], \"work_s\": %.9e, \"count\": %d, "
-                      "\"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, \"p90_s\": %.9e, \"min_s\": %.9e}\n",
-                      tr.c_str(), pat.name.c_str(), faces, pat.pairs.size(), join_sizes(req).c_str(),
-                      join_sizes(rep).c_str(), pat.work_s, pat.count, s.mean, s.median, s.p10, s.p90, s.min);
+          std::printf(
+              "{\"transport\": \"%s\", \"pattern\": \"%s\", \"faces\": %d, \"round_trips\": %zu, "
+              "\"request_bytes\": [%s], \"reply_bytes\": [%s], \"work_s\": %.9e, \"count\": %d, "
+              "\"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, \"p90_s\": %.9e, \"min_s\": %.9e}\n",
+              tr.c_str(), pat.name.c_str(), faces, pat.pairs.size(), join_sizes(req).c_str(), join_sizes(rep).c_str(),
+              pat.work_s, pat.count, s.mean, s.median, s.p10, s.p90, s.min);
         } else {
-          std::printf("| %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f |\n", tr.c_str(), pat.label.c_str(),
-                      s.mean * 1e6, s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6, s.min * 1e6);
+          std::printf("| %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f |\n", tr.c_str(), pat.label.c_str(), s.mean * 1e6,
+                      s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6, s.min * 1e6);
           if (pat.pairs.size() > 1)
             std::printf("| %s | same, per round trip | %.1f | %.1f | %.1f | %.1f | %.1f |\n", tr.c_str(),
                         s.mean / per * 1e6, s.median / per * 1e6, s.p10 / per * 1e6, s.p90 / per * 1e6,
@@ -610,26 +618,28 @@ int main(int argc, char** argv) {
         const Stats s = stats(measure_protocol(ep, pipelined, z, w, n, std::min(warmup, n / 5)));
         const int subtracted = pipelined ? std::max(w[0], w[1] + w[2]) : w[0] + w[1] + w[2];
         if (json) {
-          std::printf("{\"transport\": \"%s\", \"pattern\": \"%s\", \"faces\": %d, \"work_us\": [%d, %d, %d], "
-                      "\"work_s\": %.9e, \"count\": %d, \"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, "
-                      "\"p90_s\": %.9e, \"min_s\": %.9e}\n",
-                      tr.c_str(), name.c_str(), faces, w[0], w[1], w[2], 1e-6 * subtracted, n, s.mean, s.median, s.p10,
-                      s.p90, s.min);
+          std::printf(
+              "{\"transport\": \"%s\", \"pattern\": \"%s\", \"faces\": %d, \"work_us\": [%d, %d, %d], "
+              "\"work_s\": %.9e, \"count\": %d, \"mean_s\": %.9e, \"median_s\": %.9e, \"p10_s\": %.9e, "
+              "\"p90_s\": %.9e, \"min_s\": %.9e}\n",
+              tr.c_str(), name.c_str(), faces, w[0], w[1], w[2], 1e-6 * subtracted, n, s.mean, s.median, s.p10, s.p90,
+              s.min);
         } else {
-          std::printf("| %s | whole cycle, 3 processes, 9 messages, %s order (work %d/%d/%d us: %d us subtracted) | "
-                      "%.1f | %.1f | %.1f | %.1f | %.1f |\n",
-                      tr.c_str(), pipelined ? "pipelined" : "sequential", w[0], w[1], w[2], subtracted, s.mean * 1e6,
-                      s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6, s.min * 1e6);
+          std::printf(
+              "| %s | whole cycle, 3 processes, 9 messages, %s order (work %d/%d/%d us: %d us subtracted) | "
+              "%.1f | %.1f | %.1f | %.1f | %.1f |\n",
+              tr.c_str(), pipelined ? "pipelined" : "sequential", w[0], w[1], w[2], subtracted, s.mean * 1e6,
+              s.median * 1e6, s.p10 * 1e6, s.p90 * 1e6, s.min * 1e6);
         }
         std::fflush(stdout);
       }
     }
-    if (json)
-      std::printf("{\"pattern\": \"protobuf\", \"faces\": %d, \"median_s\": %.9e}\n", faces, proto);
+    if (json) std::printf("{\"pattern\": \"protobuf\", \"faces\": %d, \"median_s\": %.9e}\n", faces, proto);
     else
-      std::printf("\nprotobuf layer of one cycle in one process (encode, decode, validate, from_pb of the six "
-                  "messages): %.1f us\n",
-                  proto * 1e6);
+      std::printf(
+          "\nprotobuf layer of one cycle in one process (encode, decode, validate, from_pb of the six "
+          "messages): %.1f us\n",
+          proto * 1e6);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "coupled_zmq_round_trip: %s\n", e.what());
     return 1;

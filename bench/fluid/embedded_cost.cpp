@@ -6,8 +6,8 @@
 // Then the geometry alone for 3D bodies made of many coplanar faces (the boundary of a structured solid mesh,
 // as the coupler sends it): build time per cycle of a box moving through the grid, with the flat faces
 // scanning only their prisms and without (GeometryOptions::flat_face_prisms), side by side.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 
@@ -32,9 +32,10 @@ fluid:
 )",
                               n);
   if (radius > 0)
-    s += fmt::format("  embedded:\n    bodies:\n      - {{shape: circle, center: [0.45, 0.45], radius: {}, segments: {}, "
-                     "velocity: [0.3, 0.1]}}\n",
-                     radius, segments);
+    s += fmt::format(
+        "  embedded:\n    bodies:\n      - {{shape: circle, center: [0.45, 0.45], radius: {}, segments: {}, "
+        "velocity: [0.3, 0.1]}}\n",
+        radius, segments);
   return s;
 }
 
@@ -44,7 +45,8 @@ double geometry_seconds_3d(const Grid<3>& g, embedded::Surface s, const embedded
   embedded::GeometryOptions opt;
   opt.flat_face_prisms = prisms;
   embedded::EmbeddedGeometry<3> e;
-  embedded::set_rigid_velocity(s, {cells_per_cycle[0] * g.dx[0], cells_per_cycle[1] * g.dx[1], cells_per_cycle[2] * g.dx[2]});
+  embedded::set_rigid_velocity(
+      s, {cells_per_cycle[0] * g.dx[0], cells_per_cycle[1] * g.dx[1], cells_per_cycle[2] * g.dx[2]});
   embedded::build_geometry(g, s, opt, e);  // warm-up
   double total = 0;
   for (int c = 0; c < cycles; ++c) {
@@ -87,7 +89,8 @@ int main(int argc, char** argv) {
                sim->embedded().ghosts.size(), 1e3 * t, 1e3 * geo, 100 * geo / t);
   }
 
-  fmt::print("\n| 3D grid | solid mesh of the box | faces | geometry, prisms [ms] | geometry, full boxes [ms] | ratio |\n");
+  fmt::print(
+      "\n| 3D grid | solid mesh of the box | faces | geometry, prisms [ms] | geometry, full boxes [ms] | ratio |\n");
   fmt::print("|---|---|---|---|---|---|\n");
   struct Case {
     std::array<int, 3> grid;
@@ -98,16 +101,37 @@ int main(int argc, char** argv) {
     const char* name;
   };
   const Case cases[] = {
-      {{40, 8, 8}, {-2, 0, 0}, {2, 0.8, 0.8}, {-1.0, 0.0, 0.0}, {0.0, 0.8, 0.8}, {2, 4, 4}, {0.05, 0, 0}, "piston_3d's piston, 2 x 4 x 4"},
-      {{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, {0.3, 0.3, 0.3}, {0.7, 0.7, 0.7}, {8, 8, 8}, {0.3, 0.1, 0.2}, "box 0.4^3, 8^3 cells"},
-      {{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, {0.3, 0.3, 0.3}, {0.7, 0.7, 0.7}, {16, 16, 16}, {0.3, 0.1, 0.2}, "box 0.4^3, 16^3 cells"},
+      {{40, 8, 8},
+       {-2, 0, 0},
+       {2, 0.8, 0.8},
+       {-1.0, 0.0, 0.0},
+       {0.0, 0.8, 0.8},
+       {2, 4, 4},
+       {0.05, 0, 0},
+       "piston_3d's piston, 2 x 4 x 4"},
+      {{64, 64, 64},
+       {0, 0, 0},
+       {1, 1, 1},
+       {0.3, 0.3, 0.3},
+       {0.7, 0.7, 0.7},
+       {8, 8, 8},
+       {0.3, 0.1, 0.2},
+       "box 0.4^3, 8^3 cells"},
+      {{64, 64, 64},
+       {0, 0, 0},
+       {1, 1, 1},
+       {0.3, 0.3, 0.3},
+       {0.7, 0.7, 0.7},
+       {16, 16, 16},
+       {0.3, 0.1, 0.2},
+       "box 0.4^3, 16^3 cells"},
   };
   for (const Case& c : cases) {
     const Grid<3> g(c.grid, c.domain_lo, c.domain_hi);
     const embedded::Surface box = embedded::make_subdivided_box(3, c.lo, c.hi, c.mesh);
     const double on = geometry_seconds_3d(g, box, c.cells_per_cycle, true, steps),
                  off = geometry_seconds_3d(g, box, c.cells_per_cycle, false, steps);
-    fmt::print("| {} x {} x {} | {} | {} | {:.3f} | {:.3f} | {:.2f} |\n", c.grid[0], c.grid[1], c.grid[2], c.name, box.faces.size(),
-               1e3 * on, 1e3 * off, off / on);
+    fmt::print("| {} x {} x {} | {} | {} | {:.3f} | {:.3f} | {:.2f} |\n", c.grid[0], c.grid[1], c.grid[2], c.name,
+               box.faces.size(), 1e3 * on, 1e3 * off, off / on);
   }
 }

@@ -2,8 +2,8 @@
 // the exact solution) and a smooth density wave (one period, L1 against exact cell averages),
 // for AUFS, HLLC and Rusanov, first and second order, N from n_min doubling to n_max.
 // Prints CSV: problem,flux,order,N,steps,wall_s,l1_rho
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cmath>

@@ -1,9 +1,9 @@
 // Throughput of the fluid solver: cell-updates per second (one update = one full time step of
 // one cell, all Runge-Kutta stages) and state memory per cell, for a scene and thread count.
 // Usage: fluid_throughput SCENE.yaml [--steps N] [--threads T] [--set k=v ...]
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <omp.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 
@@ -28,8 +28,9 @@ int main(int argc, char** argv) {
   for (int i = 0; i < steps; ++i) sim->advance(sim->stable_dt());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cells = static_cast<double>(sim->interior_cells());
-  fmt::print("{{\"scene\": \"{}\", \"cells\": {}, \"phases\": {}, \"threads\": {}, \"steps\": {}, \"wall_s\": {:.4f}, "
-             "\"cell_updates_per_s\": {:.6e}, \"bytes_per_cell\": {:.1f}}}\n",
-             scene.name, cells, scene.num_phases(), omp_get_max_threads(), steps, wall, steps * cells / wall,
-             static_cast<double>(sim->state_bytes()) / cells);
+  fmt::print(
+      "{{\"scene\": \"{}\", \"cells\": {}, \"phases\": {}, \"threads\": {}, \"steps\": {}, \"wall_s\": {:.4f}, "
+      "\"cell_updates_per_s\": {:.6e}, \"bytes_per_cell\": {:.1f}}}\n",
+      scene.name, cells, scene.num_phases(), omp_get_max_threads(), steps, wall, steps * cells / wall,
+      static_cast<double>(sim->state_bytes()) / cells);
 }

@@ -29,9 +29,9 @@ struct DriveOptions {
   std::vector<double> output_times;  // sorted, last = t_end
   double t_end = 0;
   long max_steps = 0;
-  double dt_min = 0;           // a smaller step is a numerical failure
-  double work_per_step = 1;    // cells or elements, for the rate on the progress line
-  std::string rate_unit;       // e.g. "Mcell-updates/s"
+  double dt_min = 0;         // a smaller step is a numerical failure
+  double work_per_step = 1;  // cells or elements, for the rate on the progress line
+  std::string rate_unit;     // e.g. "Mcell-updates/s"
   bool quiet = false;
 };
 
@@ -59,8 +59,8 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
         if (dt >= remaining) dt = remaining;
         else if (dt > 0.5 * remaining) dt = 0.5 * remaining;  // avoid a tiny last step
         if (!(dt > 0.0) || !std::isfinite(dt) || dt < o.dt_min)
-          throw NumericalError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim.time(),
-                                           sim.steps()));
+          throw NumericalError(
+              fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim.time(), sim.steps()));
         sim.advance(dt);
         const double now = progress.elapsed();
         if (now - t_last > 1.0) {
@@ -68,7 +68,8 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
           t_last = now;
           steps_last = sim.steps();
         }
-        progress.update(sim.steps(), sim.time(), o.t_end, fmt::format("dt={:.3g}  {:.3g} {}", dt, rate * 1e-6, o.rate_unit));
+        progress.update(sim.steps(), sim.time(), o.t_end,
+                        fmt::format("dt={:.3g}  {:.3g} {}", dt, rate * 1e-6, o.rate_unit));
       }
       snapshot();
       if (sim.steps() >= o.max_steps) {

@@ -18,7 +18,7 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<std::string> overrides;
   bool quiet = false;
-  int threads = 0;  // 0: scene value / OpenMP default
+  int threads = 0;      // 0: scene value / OpenMP default
   std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
   std::string token;    // per-run token of a coupled run
   bool coupled() const { return !coupler.empty(); }

@@ -37,12 +37,10 @@ void apply_override(YAML::Node root, const std::string& assignment, DocumentCont
     bool is_index = !p.empty() && std::all_of(p.begin(), p.end(), ::isdigit);
     YAML::Node next;
     if (cur.IsSequence()) {
-      if (!is_index)
-        throw ConfigError(fmt::format("--set {}: '{}' is a list, expected a numeric index", path, p));
+      if (!is_index) throw ConfigError(fmt::format("--set {}: '{}' is a list, expected a numeric index", path, p));
       std::size_t idx = std::stoul(p);
       if (idx >= cur.size())
-        throw ConfigError(fmt::format("--set {}: index {} out of range (list has {} entries)", path, idx,
-                                      cur.size()));
+        throw ConfigError(fmt::format("--set {}: index {} out of range (list has {} entries)", path, idx, cur.size()));
       if (last) {
         cur[idx] = parsed;
         break;
@@ -213,9 +211,7 @@ double coupled_end_time(Node& root) {
   try {
     const double end = c["time"]["end"].as<double>();
     return end > 0 ? end : 0.0;
-  } catch (const YAML::Exception&) {
-    return 0.0;
-  }
+  } catch (const YAML::Exception&) { return 0.0; }
 }
 
 std::vector<Node> Node::list(const std::string& key) {
@@ -229,8 +225,7 @@ std::vector<Node> Node::list(const std::string& key) {
 std::vector<Node> Node::elements() const {
   if (!node_.IsSequence()) fail("", "a list, got " + describe(node_));
   std::vector<Node> out;
-  for (std::size_t i = 0; i < node_.size(); ++i)
-    out.emplace_back(node_[i], path_ + "." + std::to_string(i), ctx_);
+  for (std::size_t i = 0; i < node_.size(); ++i) out.emplace_back(node_[i], path_ + "." + std::to_string(i), ctx_);
   return out;
 }
 

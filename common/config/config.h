@@ -38,8 +38,8 @@ using Check = std::function<std::string(const T&)>;
 
 Check<double> positive();
 Check<double> non_negative();
-Check<double> in_range(double lo, double hi);             // lo <= v <= hi
-Check<double> in_open_closed(double lo, double hi);       // lo <  v <= hi
+Check<double> in_range(double lo, double hi);        // lo <= v <= hi
+Check<double> in_open_closed(double lo, double hi);  // lo <  v <= hi
 Check<int> int_at_least(int lo);
 Check<std::string> one_of(std::vector<std::string> choices);
 
@@ -64,14 +64,13 @@ class Node {
 
   // Fixed-size or bounded lists of numbers.
   std::vector<double> get_vector(const std::string& key, std::size_t min_len, std::size_t max_len,
-                                 std::optional<std::vector<double>> fallback = std::nullopt,
-                                 Check<double> check = {});
+                                 std::optional<std::vector<double>> fallback = std::nullopt, Check<double> check = {});
 
-  Node child(const std::string& key);                 // required map
+  Node child(const std::string& key);  // required map
   std::optional<Node> optional_child(const std::string& key);
-  Node child_or_empty(const std::string& key);         // an empty map when missing
-  std::vector<Node> list(const std::string& key);     // required sequence of entries
-  std::vector<Node> elements() const;                 // this node as a sequence
+  Node child_or_empty(const std::string& key);     // an empty map when missing
+  std::vector<Node> list(const std::string& key);  // required sequence of entries
+  std::vector<Node> elements() const;              // this node as a sequence
 
   // Mark a key as known without reading it (it belongs to another reader).
   void skip(const std::string& key) { used_.insert(key); }

@@ -19,8 +19,14 @@ bool convert(const YAML::Node& n, T& out) {
   if (!n.IsScalar()) return false;
   if constexpr (std::is_same_v<T, bool>) {
     const std::string& s = n.Scalar();
-    if (s == "true" || s == "yes" || s == "on") { out = true; return true; }
-    if (s == "false" || s == "no" || s == "off") { out = false; return true; }
+    if (s == "true" || s == "yes" || s == "on") {
+      out = true;
+      return true;
+    }
+    if (s == "false" || s == "no" || s == "off") {
+      out = false;
+      return true;
+    }
     return false;
   } else if constexpr (std::is_integral_v<T>) {
     const std::string& s = n.Scalar();
@@ -53,8 +59,7 @@ T Node::get(const std::string& key, const T& fallback, Check<T> check) {
   YAML::Node n = at(key);
   if (!n || n.IsNull()) return fallback;
   T v{};
-  if (!detail::convert(n, v))
-    fail(key, std::string(detail::type_name<T>()) + ", got " + describe(n));
+  if (!detail::convert(n, v)) fail(key, std::string(detail::type_name<T>()) + ", got " + describe(n));
   if (check) {
     std::string expected = check(v);
     if (!expected.empty()) fail(key, expected + ", got " + describe(n));
@@ -73,8 +78,7 @@ T Node::require(const std::string& key, Check<T> check) {
 template <class T>
 T Node::as(Check<T> check) const {
   T v{};
-  if (!detail::convert(node_, v))
-    fail("", std::string(detail::type_name<T>()) + ", got " + describe(node_));
+  if (!detail::convert(node_, v)) fail("", std::string(detail::type_name<T>()) + ", got " + describe(node_));
   if (check) {
     std::string expected = check(v);
     if (!expected.empty()) fail("", expected + ", got " + describe(node_));

@@ -14,9 +14,7 @@
 namespace cosim::coupling {
 
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 struct Client::Impl {
@@ -37,8 +35,8 @@ struct Client::Impl {
     e.mutable_header()->set_busy_seconds(busy + (now_s() - last_return));
     busy = 0;
     if (!data.send({encode(e)}, 5000))
-      throw PeerLost(fmt::format("{}: cannot send {} to the coupler at {}", role_name(opt.role), body_name(e),
-                                 opt.endpoint));
+      throw PeerLost(
+          fmt::format("{}: cannot send {} to the coupler at {}", role_name(opt.role), body_name(e), opt.endpoint));
     last_return = now_s();
   }
 
@@ -86,8 +84,8 @@ struct Client::Impl {
       throw RunStopped(fmt::format("coupler stopped the run while {} waited for {}: {}", role_name(opt.role), name,
                                    e.stop().reason()));
     if (e.body_case() != kind)
-      protocol_failure(fmt::format("expected {} in cycle {}, got {} (cycle {})", name, cycle, body_name(e),
-                                   e.header().cycle()));
+      protocol_failure(
+          fmt::format("expected {} in cycle {}, got {} (cycle {})", name, cycle, body_name(e), e.header().cycle()));
     if (e.header().cycle() != cycle)
       protocol_failure(fmt::format("{} for cycle {}, expected cycle {}", name, e.header().cycle(), cycle));
     last_return = now_s();
@@ -107,8 +105,8 @@ struct Client::Impl {
     pb::Envelope w = receive("Welcome", opt.connect_timeout);
     if (!w.has_welcome()) protocol_failure(fmt::format("expected Welcome, got {}", body_name(w)));
     if (!w.welcome().accepted())
-      throw Refused(fmt::format("coupler at {} refused {}: {}", opt.endpoint, role_name(opt.role),
-                                w.welcome().reason()));
+      throw Refused(
+          fmt::format("coupler at {} refused {}: {}", opt.endpoint, role_name(opt.role), w.welcome().reason()));
     mode = from_pb(w.welcome().mode());
     scheme = from_pb(w.welcome().scheme());
     timeout = w.welcome().timeout() > 0 ? w.welcome().timeout() : 5.0;
@@ -150,8 +148,8 @@ Directive Client::next() {
     d.kind = Directive::Kind::Output;
     d.output_index = static_cast<int>(e.output_request().index());
   } else {
-    m.protocol_failure(fmt::format("expected DtDecision, OutputRequest or Stop after cycle {}, got {}", m.cycle,
-                                   body_name(e)));
+    m.protocol_failure(
+        fmt::format("expected DtDecision, OutputRequest or Stop after cycle {}, got {}", m.cycle, body_name(e)));
   }
   d.cycle = h.cycle();
   d.time = h.time();
@@ -182,7 +180,8 @@ InterfaceStates Client::receive_states() {
 
 void Client::propose_dt(double dt) {
   if (!(dt > 0) || !std::isfinite(dt))
-    throw ProtocolError(fmt::format("{}: DtProposal.dt: {}, expected a finite number > 0", role_name(impl_->opt.role), dt));
+    throw ProtocolError(
+        fmt::format("{}: DtProposal.dt: {}, expected a finite number > 0", role_name(impl_->opt.role), dt));
   pb::Envelope e = impl_->envelope();
   e.mutable_dt_proposal()->set_dt(dt);
   impl_->send(e);
@@ -193,8 +192,7 @@ void Client::report_error(const std::string& reason) noexcept {
     pb::Envelope e = impl_->envelope();
     e.mutable_error()->set_reason(reason);
     impl_->data.send({encode(e)}, 500);
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 void Client::check() const {
@@ -207,8 +205,7 @@ void Client::close() noexcept {
   impl_->heartbeat.reset();
   try {
     impl_->data.set_linger(500);  // let a last Error or DtProposal leave
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 Mode Client::mode() const { return impl_->mode; }

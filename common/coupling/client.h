@@ -49,11 +49,11 @@ class Client {
   // Waits for the coupler's next directive. A Stop without failure is returned; with failure it throws.
   Directive next();
 
-  void send_faces(const Faces& faces);           // solid, once per cycle
-  Faces receive_faces();                         // fluid, once per cycle
-  void send_samples(const FluidSamples& s);      // fluid, once per cycle
-  InterfaceStates receive_states();              // both, once per cycle
-  void propose_dt(double dt);                    // both, once per cycle [s]
+  void send_faces(const Faces& faces);       // solid, once per cycle
+  Faces receive_faces();                     // fluid, once per cycle
+  void send_samples(const FluidSamples& s);  // fluid, once per cycle
+  InterfaceStates receive_states();          // both, once per cycle
+  void propose_dt(double dt);                // both, once per cycle [s]
 
   // Tells the coupler that this solver cannot go on (best effort, never throws).
   void report_error(const std::string& reason) noexcept;
@@ -63,7 +63,7 @@ class Client {
   void close() noexcept;
 
   Mode mode() const;
-  Scheme scheme() const;  // where the fluid proposes its step (types.h)
+  Scheme scheme() const;   // where the fluid proposes its step (types.h)
   double timeout() const;  // [s]
   long cycle() const;      // current cycle (-1 before the first DtDecision)
   double time() const;     // t^n of the current cycle [s]

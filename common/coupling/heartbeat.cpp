@@ -10,15 +10,18 @@
 namespace cosim::coupling {
 
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 Heartbeat::Heartbeat(ZmqContext& ctx, std::string endpoint, Role role, std::string token, double interval,
                      double timeout)
-    : ctx_(ctx), endpoint_(std::move(endpoint)), token_(std::move(token)), role_(role), interval_(interval),
-      timeout_(timeout), thread_([this] { loop(); }) {}
+    : ctx_(ctx),
+      endpoint_(std::move(endpoint)),
+      token_(std::move(token)),
+      role_(role),
+      interval_(interval),
+      timeout_(timeout),
+      thread_([this] { loop(); }) {}
 
 Heartbeat::~Heartbeat() { stop(); }
 

@@ -46,8 +46,8 @@ struct SolverLoopResult {
   std::string status = "completed";  // completed | failed | interrupted
   std::string error;
   int code = 0;
-  double wall = 0;   // [s]
-  long cycles = 0;   // DtDecisions obeyed
+  double wall = 0;  // [s]
+  long cycles = 0;  // DtDecisions obeyed
   int snapshots = 0;
 };
 
@@ -79,9 +79,10 @@ SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycl
       }
       const double scale = std::max({std::abs(d.time), std::abs(sim.time()), d.dt, 1e-300});
       if (std::abs(sim.time() - d.time) > 1e-9 * scale)
-        throw ProtocolError(fmt::format("DtDecision of cycle {} starts at t = {:.12g} s but this solver is at t = "
-                                        "{:.12g} s",
-                                        d.cycle, d.time, sim.time()));
+        throw ProtocolError(
+            fmt::format("DtDecision of cycle {} starts at t = {:.12g} s but this solver is at t = "
+                        "{:.12g} s",
+                        d.cycle, d.time, sim.time()));
       cycle(d);
       ++r.cycles;
     }
@@ -89,9 +90,7 @@ SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycl
     fail(app::interrupted() ? 130 : 5, app::interrupted() ? "interrupted" : "failed", e.what(), false);
   } catch (const std::invalid_argument& e) {  // malformed data from the coupler
     fail(5, "failed", e.what(), true);
-  } catch (const app::NumericalError& e) {
-    fail(3, "failed", e.what(), true);
-  } catch (const std::exception& e) {
+  } catch (const app::NumericalError& e) { fail(3, "failed", e.what(), true); } catch (const std::exception& e) {
     if (app::interrupted()) {
       fail(130, "interrupted", "interrupted", true);
     } else {

@@ -26,13 +26,13 @@ const char* scheme_name(Scheme s);  // "pipelined", "sequential"
 struct Faces {
   int dim = 3;
   int count = 0;
-  std::vector<double> centre;         // [m], dim per face
-  std::vector<double> normal;         // unit, out of the solid, dim per face
-  std::vector<double> area;           // [m^2]
-  std::vector<double> velocity;       // [m/s], dim per face
-  std::vector<double> normal_stress;  // n.sigma.n [Pa], tension positive
-  std::vector<double> impedance;      // rho c [Pa s/m], +inf for rigid
-  int nodes_per_face = 0;             // 0: no vertex data
+  std::vector<double> centre;              // [m], dim per face
+  std::vector<double> normal;              // unit, out of the solid, dim per face
+  std::vector<double> area;                // [m^2]
+  std::vector<double> velocity;            // [m/s], dim per face
+  std::vector<double> normal_stress;       // n.sigma.n [Pa], tension positive
+  std::vector<double> impedance;           // rho c [Pa s/m], +inf for rigid
+  int nodes_per_face = 0;                  // 0: no vertex data
   std::vector<double> vertex_position;     // [m], dim per vertex
   std::vector<std::uint32_t> face_vertex;  // nodes_per_face per face
 };

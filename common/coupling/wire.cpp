@@ -149,18 +149,17 @@ std::string first(std::initializer_list<std::string> errors) {
 std::string validate_faces(const pb::InterfaceFaces& m) {
   if (m.dim() < 1 || m.dim() > 3) return fmt::format("InterfaceFaces.dim: {}, expected 1, 2 or 3", m.dim());
   const long n = m.count(), d = m.dim();
-  std::string e = first({size_check("InterfaceFaces", "centre", m.centre_size(), n * d, "dim * count"),
-                         size_check("InterfaceFaces", "normal", m.normal_size(), n * d, "dim * count"),
-                         size_check("InterfaceFaces", "area", m.area_size(), n, "count"),
-                         size_check("InterfaceFaces", "velocity", m.velocity_size(), n * d, "dim * count"),
-                         size_check("InterfaceFaces", "normal_stress", m.normal_stress_size(), n, "count"),
-                         size_check("InterfaceFaces", "impedance", m.impedance_size(), n, "count"),
-                         finite_check("InterfaceFaces", "centre", m.centre()),
-                         finite_check("InterfaceFaces", "normal", m.normal()),
-                         finite_check("InterfaceFaces", "area", m.area()),
-                         finite_check("InterfaceFaces", "velocity", m.velocity()),
-                         finite_check("InterfaceFaces", "normal_stress", m.normal_stress()),
-                         finite_check("InterfaceFaces", "impedance", m.impedance(), true)});
+  std::string e =
+      first({size_check("InterfaceFaces", "centre", m.centre_size(), n * d, "dim * count"),
+             size_check("InterfaceFaces", "normal", m.normal_size(), n * d, "dim * count"),
+             size_check("InterfaceFaces", "area", m.area_size(), n, "count"),
+             size_check("InterfaceFaces", "velocity", m.velocity_size(), n * d, "dim * count"),
+             size_check("InterfaceFaces", "normal_stress", m.normal_stress_size(), n, "count"),
+             size_check("InterfaceFaces", "impedance", m.impedance_size(), n, "count"),
+             finite_check("InterfaceFaces", "centre", m.centre()), finite_check("InterfaceFaces", "normal", m.normal()),
+             finite_check("InterfaceFaces", "area", m.area()), finite_check("InterfaceFaces", "velocity", m.velocity()),
+             finite_check("InterfaceFaces", "normal_stress", m.normal_stress()),
+             finite_check("InterfaceFaces", "impedance", m.impedance(), true)});
   if (!e.empty()) return e;
   for (int i = 0; i < m.impedance_size(); ++i)
     if (!(m.impedance(i) > 0)) return fmt::format("InterfaceFaces.impedance[{}]: {}, expected > 0", i, m.impedance(i));

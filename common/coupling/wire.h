@@ -10,7 +10,6 @@
 
 namespace cosim::coupling {
 
-
 constexpr std::uint32_t kProtocolVersion = pb::PROTOCOL_VERSION_CURRENT;
 
 pb::Role to_pb(Role r);

@@ -21,9 +21,9 @@ struct MieGruneisenParams {
 struct Material {
   std::string name;
   std::string description;
-  StiffenedGas sg;                          // used by the fluid solver
-  double reference_density;                 // [kg/m^3] at the reference state
-  std::optional<MieGruneisenParams> mg;     // metals only
+  StiffenedGas sg;                       // used by the fluid solver
+  double reference_density;              // [kg/m^3] at the reference state
+  std::optional<MieGruneisenParams> mg;  // metals only
 };
 
 const std::vector<Material>& material_library();

@@ -10,9 +10,9 @@ namespace cosim::eos {
 
 struct StiffenedGas {
   double gamma = 1.4;
-  double pinf = 0.0;   // [Pa]
-  double q = 0.0;      // energy datum [J/kg]
-  double cv = 717.6;   // [J/(kg K)]
+  double pinf = 0.0;  // [Pa]
+  double q = 0.0;     // energy datum [J/kg]
+  double cv = 717.6;  // [J/(kg K)]
 
   double pressure(double rho, double e) const { return (gamma - 1.0) * rho * (e - q) - gamma * pinf; }
   double internal_energy(double rho, double p) const { return (p + gamma * pinf) / ((gamma - 1.0) * rho) + q; }

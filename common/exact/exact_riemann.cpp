@@ -34,8 +34,8 @@ struct StarFull {
 
 void check_input(const Primitive& s, const Material& m, const char* name) {
   const std::string who = std::string("exact Riemann solver: ") + name + " state ";
-  if (!std::isfinite(s.rho) || !std::isfinite(s.u) || !std::isfinite(s.p) ||
-      !std::isfinite(m.gamma) || !std::isfinite(m.pinf)) {
+  if (!std::isfinite(s.rho) || !std::isfinite(s.u) || !std::isfinite(s.p) || !std::isfinite(m.gamma) ||
+      !std::isfinite(m.pinf)) {
     throw std::runtime_error(who + "has non-finite values");
   }
   if (!(m.gamma > 1.0)) throw std::runtime_error(who + "needs gamma > 1");
@@ -69,8 +69,7 @@ void pressure_function(const Side& k, double P, double& f, double& df) {
     const double r = P / k.P;
     const double z = (k.g - 1.0) / (2.0 * k.g);
     f = 2.0 * k.c / (k.g - 1.0) * (std::pow(r, z) - 1.0);
-    df = (r > 0.0) ? std::pow(r, -(k.g + 1.0) / (2.0 * k.g)) / (k.rho * k.c)
-                   : std::numeric_limits<double>::infinity();
+    df = (r > 0.0) ? std::pow(r, -(k.g + 1.0) / (2.0 * k.g)) / (k.rho * k.c) : std::numeric_limits<double>::infinity();
   }
 }
 
@@ -107,8 +106,7 @@ double initial_guess(const Side& l, const Side& r, double p_min) {
   return q;
 }
 
-StarFull solve_full(const Primitive& L, const Material& mL, const Primitive& R,
-                    const Material& mR) {
+StarFull solve_full(const Primitive& L, const Material& mL, const Primitive& R, const Material& mR) {
   check_input(L, mL, "left");
   check_input(R, mR, "right");
   const double pinf_min = std::min(mL.pinf, mR.pinf);
@@ -119,8 +117,7 @@ StarFull solve_full(const Primitive& L, const Material& mL, const Primitive& R,
   if (pressure_residual(l, r, 0.0) >= 0.0) {
     // Pressure positivity condition violated: vacuum is generated (Toro eq. 4.40, section 4.6).
     if (l.pinf > 0.0 || r.pinf > 0.0) {
-      throw std::runtime_error(
-          "exact Riemann solver: vacuum/cavitation with pinf > 0 is not supported");
+      throw std::runtime_error("exact Riemann solver: vacuum/cavitation with pinf > 0 is not supported");
     }
     const double sl = l.u + 2.0 * l.c / (l.g - 1.0);  // left vacuum front (Toro section 4.6)
     const double sr = r.u - 2.0 * r.c / (r.g - 1.0);  // right vacuum front (Toro section 4.6)
@@ -194,8 +191,7 @@ Star solve_star(const Primitive& L, const Material& mL, const Primitive& R, cons
   return solve_full(L, mL, R, mR).star;
 }
 
-RiemannSolution::RiemannSolution(const Primitive& L, const Material& mL, const Primitive& R,
-                                 const Material& mR)
+RiemannSolution::RiemannSolution(const Primitive& L, const Material& mL, const Primitive& R, const Material& mR)
     : L_(L), R_(R), mL_(mL), mR_(mR) {
   const StarFull full = solve_full(L, mL, R, mR);
   star_ = full.star;
@@ -215,8 +211,7 @@ RiemannSolution::RiemannSolution(const Primitive& L, const Material& mL, const P
 
   left_shock_ = full.shock_l;
   if (left_shock_) {  // Toro eq. 4.52
-    left_head_ = left_tail_ =
-        L.u - cL_ * std::sqrt((gl + 1.0) / (2.0 * gl) * full.Ps_l / PL + (gl - 1.0) / (2.0 * gl));
+    left_head_ = left_tail_ = L.u - cL_ * std::sqrt((gl + 1.0) / (2.0 * gl) * full.Ps_l / PL + (gl - 1.0) / (2.0 * gl));
   } else {  // Toro eqs. 4.54-4.55 (head, tail)
     left_head_ = L.u - cL_;
     left_tail_ = star_.u - cL_ * std::pow(full.Ps_l / PL, (gl - 1.0) / (2.0 * gl));

@@ -87,20 +87,18 @@ std::vector<hsize_t> checked_dims(const Hdf5Shape& shape, std::size_t count, con
   if (shape.empty()) site.invalid("shape must have at least one dimension");
   std::uint64_t product = 1;
   for (const std::uint64_t d : shape) product *= d;
-  if (product != count) {
-    site.invalid(fmt::format("shape holds {} values but {} were given", product, count));
-  }
+  if (product != count) { site.invalid(fmt::format("shape holds {} values but {} were given", product, count)); }
   return {shape.begin(), shape.end()};
 }
 
-void write_dataset_raw(hid_t file, const Site& site, const std::string& name, const void* data,
-                       std::size_t count, const Hdf5Shape& shape, hid_t file_type, hid_t mem_type) {
+void write_dataset_raw(hid_t file, const Site& site, const std::string& name, const void* data, std::size_t count,
+                       const Hdf5Shape& shape, hid_t file_type, hid_t mem_type) {
   const std::vector<hsize_t> dims = checked_dims(shape, count, site);
-  const Handle space = site.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-                                H5Sclose, "create dataspace of");
-  const Handle dset = site.own(
-      H5Dcreate2(file, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose, "create");
+  const Handle space =
+      site.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "create dataspace of");
+  const Handle dset =
+      site.own(H5Dcreate2(file, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+               "create");
   if (count > 0) site.check(H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write");
 }
 
@@ -116,8 +114,8 @@ std::vector<T> read_dataset_raw(hid_t file, const Site& site, const std::string&
 }
 
 // Creates (or replaces) attribute `name` on `object` and writes `data` into it.
-void write_attribute_raw(hid_t file, const Site& site, const std::string& object, const std::string& name,
-                         hid_t space, hid_t type, const void* data) {
+void write_attribute_raw(hid_t file, const Site& site, const std::string& object, const std::string& name, hid_t space,
+                         hid_t type, const void* data) {
   const Handle obj = site.own(H5Oopen(file, object.c_str(), H5P_DEFAULT), H5Oclose, "open the object of");
   const htri_t present = H5Aexists(obj.get(), name.c_str());
   site.check(present, "look up");
@@ -134,10 +132,10 @@ Handle attribute_space(std::size_t count, bool scalar, const Site& site) {
 }
 
 template <class T>
-std::vector<T> read_attribute_raw(hid_t file, const Site& site, const std::string& object,
-                                  const std::string& name, hid_t mem_type) {
-  const Handle attr = site.own(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-                               H5Aclose, "open");
+std::vector<T> read_attribute_raw(hid_t file, const Site& site, const std::string& object, const std::string& name,
+                                  hid_t mem_type) {
+  const Handle attr =
+      site.own(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "open");
   const Handle space = site.own(H5Aget_space(attr.get()), H5Sclose, "query");
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) site.fail("query size of");
@@ -189,8 +187,7 @@ Hdf5File::~Hdf5File() {
   }
 }
 
-Hdf5File::Hdf5File(Hdf5File&& other) noexcept
-    : path_(std::move(other.path_)), id_(std::exchange(other.id_, -1)) {}
+Hdf5File::Hdf5File(Hdf5File&& other) noexcept : path_(std::move(other.path_)), id_(std::exchange(other.id_, -1)) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   if (this != &other) {
@@ -240,14 +237,13 @@ bool Hdf5File::exists(const std::string& name) const {
 }
 
 void Hdf5File::write_dataset(const std::string& name, std::span<const double> data, const Hdf5Shape& shape) {
-  write_dataset_raw(checked_id("write a dataset"), dataset_site(path_, name), name, data.data(), data.size(),
-                    shape, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+  write_dataset_raw(checked_id("write a dataset"), dataset_site(path_, name), name, data.data(), data.size(), shape,
+                    H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
 }
 
-void Hdf5File::write_dataset(const std::string& name, std::span<const std::int64_t> data,
-                             const Hdf5Shape& shape) {
-  write_dataset_raw(checked_id("write a dataset"), dataset_site(path_, name), name, data.data(), data.size(),
-                    shape, H5T_STD_I64LE, H5T_NATIVE_INT64);
+void Hdf5File::write_dataset(const std::string& name, std::span<const std::int64_t> data, const Hdf5Shape& shape) {
+  write_dataset_raw(checked_id("write a dataset"), dataset_site(path_, name), name, data.data(), data.size(), shape,
+                    H5T_STD_I64LE, H5T_NATIVE_INT64);
 }
 
 Hdf5Shape Hdf5File::dataset_shape(const std::string& name) const {
@@ -263,8 +259,7 @@ Hdf5Shape Hdf5File::dataset_shape(const std::string& name) const {
 }
 
 std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
-  return read_dataset_raw<double>(checked_id("read a dataset"), dataset_site(path_, name), name,
-                                  H5T_NATIVE_DOUBLE);
+  return read_dataset_raw<double>(checked_id("read a dataset"), dataset_site(path_, name), name, H5T_NATIVE_DOUBLE);
 }
 
 std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
@@ -275,19 +270,16 @@ std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, double value) {
   const Site site = attribute_site(path_, object, name);
   const Handle space = attribute_space(1, true, site);
-  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), H5T_NATIVE_DOUBLE,
-                      &value);
+  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), H5T_NATIVE_DOUBLE, &value);
 }
 
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, std::int64_t value) {
   const Site site = attribute_site(path_, object, name);
   const Handle space = attribute_space(1, true, site);
-  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), H5T_NATIVE_INT64,
-                      &value);
+  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), H5T_NATIVE_INT64, &value);
 }
 
-void Hdf5File::write_attribute(const std::string& object, const std::string& name,
-                               std::span<const double> values) {
+void Hdf5File::write_attribute(const std::string& object, const std::string& name, std::span<const double> values) {
   const Site site = attribute_site(path_, object, name);
   const Handle space = attribute_space(values.size(), false, site);
   write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), H5T_NATIVE_DOUBLE,
@@ -309,26 +301,24 @@ void Hdf5File::write_attribute(const std::string& object, const std::string& nam
   site.check(H5Tset_size(type.get(), value.size() + 1), "make string type for");
   site.check(H5Tset_strpad(type.get(), H5T_STR_NULLTERM), "make string type for");
   const std::string text(value);  // NUL-terminated copy
-  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), type.get(),
-                      text.c_str());
+  write_attribute_raw(checked_id("write an attribute"), site, object, name, space.get(), type.get(), text.c_str());
 }
 
 std::vector<double> Hdf5File::read_double_attribute(const std::string& object, const std::string& name) const {
-  return read_attribute_raw<double>(checked_id("read an attribute"), attribute_site(path_, object, name), object,
-                                    name, H5T_NATIVE_DOUBLE);
+  return read_attribute_raw<double>(checked_id("read an attribute"), attribute_site(path_, object, name), object, name,
+                                    H5T_NATIVE_DOUBLE);
 }
 
-std::vector<std::int64_t> Hdf5File::read_int64_attribute(const std::string& object,
-                                                         const std::string& name) const {
-  return read_attribute_raw<std::int64_t>(checked_id("read an attribute"), attribute_site(path_, object, name),
-                                          object, name, H5T_NATIVE_INT64);
+std::vector<std::int64_t> Hdf5File::read_int64_attribute(const std::string& object, const std::string& name) const {
+  return read_attribute_raw<std::int64_t>(checked_id("read an attribute"), attribute_site(path_, object, name), object,
+                                          name, H5T_NATIVE_INT64);
 }
 
 std::string Hdf5File::read_string_attribute(const std::string& object, const std::string& name) const {
   const hid_t file = checked_id("read an attribute");
   const Site site = attribute_site(path_, object, name);
-  const Handle attr = site.own(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-                               H5Aclose, "open");
+  const Handle attr =
+      site.own(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "open");
   const Handle type = site.own(H5Aget_type(attr.get()), H5Tclose, "query type of");
   if (H5Tget_class(type.get()) != H5T_STRING) site.fail("read (not a string)");
   const htri_t variable = H5Tis_variable_str(type.get());

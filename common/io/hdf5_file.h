@@ -41,7 +41,7 @@ class Hdf5File {
   void write_dataset(const std::string& name, std::span<const std::int64_t> data, const Hdf5Shape& shape);
 
   Hdf5Shape dataset_shape(const std::string& name) const;
-  std::vector<double> read_doubles(const std::string& name) const;      // flattened, row-major
+  std::vector<double> read_doubles(const std::string& name) const;       // flattened, row-major
   std::vector<std::int64_t> read_int64s(const std::string& name) const;  // flattened, row-major
 
   // Attributes on an existing object ("/" is the root). Scalars get a scalar dataspace, spans a 1-D one.
@@ -49,8 +49,7 @@ class Hdf5File {
   void write_attribute(const std::string& object, const std::string& name, double value);
   void write_attribute(const std::string& object, const std::string& name, std::int64_t value);
   void write_attribute(const std::string& object, const std::string& name, std::span<const double> values);
-  void write_attribute(const std::string& object, const std::string& name,
-                       std::span<const std::int64_t> values);
+  void write_attribute(const std::string& object, const std::string& name, std::span<const std::int64_t> values);
   void write_attribute(const std::string& object, const std::string& name, std::string_view value);
 
   std::vector<double> read_double_attribute(const std::string& object, const std::string& name) const;

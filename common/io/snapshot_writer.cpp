@@ -52,9 +52,8 @@ std::string xml_escape(std::string_view text) {
 // <DataItem> pointing at `dataset` in `h5_name` (a file name relative to the .xmf).
 std::string data_item(const Hdf5Shape& shape, std::string_view number_type, const std::string& h5_name,
                       const std::string& dataset) {
-  return fmt::format(
-      "<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}:{}</DataItem>",
-      fmt::join(shape, " "), number_type, xml_escape(h5_name), xml_escape(dataset));
+  return fmt::format("<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}:{}</DataItem>",
+                     fmt::join(shape, " "), number_type, xml_escape(h5_name), xml_escape(dataset));
 }
 
 // ---------------------------------------------------------------- fields
@@ -121,8 +120,7 @@ std::string write_field(Hdf5File& h5, const FieldView& f, const EntityShapes& sh
   h5.write_dataset(dataset, stored_values(f, entities), shape);
   return fmt::format(
       "        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n          {}\n        </Attribute>\n",
-      xml_escape(f.name), attribute_type(f.ncomp), cell ? "Cell" : "Node",
-      data_item(shape, "Float", h5_name, dataset));
+      xml_escape(f.name), attribute_type(f.ncomp), cell ? "Cell" : "Node", data_item(shape, "Float", h5_name, dataset));
 }
 
 std::string write_fields(Hdf5File& h5, const std::vector<FieldView>& fields, const EntityShapes& shapes,
@@ -192,8 +190,7 @@ std::string uniform_grid_xml(const UniformGrid& g) {
       "          <DataItem Name=\"Spacing\" Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" "
       "Format=\"XML\">{} {} {}</DataItem>\n"
       "        </Geometry>\n",
-      nodes[2], nodes[1], nodes[0], g.origin[2], g.origin[1], g.origin[0], g.spacing[2], g.spacing[1],
-      g.spacing[0]);
+      nodes[2], nodes[1], nodes[0], g.origin[2], g.origin[1], g.origin[0], g.spacing[2], g.spacing[1], g.spacing[0]);
 }
 
 // ---------------------------------------------------------------- unstructured grids
@@ -203,24 +200,27 @@ const char* cell_type_name(const UnstructuredGrid& g) {
 }
 // TopologyType (and NodesPerElement where XDMF needs it).
 const char* xdmf_topology(const UnstructuredGrid& g) {
-  return g.nodes_per_cell == 2 ? "Polyline\" NodesPerElement=\"2" : g.nodes_per_cell == 4 ? "Quadrilateral" : "Hexahedron";
+  return g.nodes_per_cell == 2   ? "Polyline\" NodesPerElement=\"2"
+         : g.nodes_per_cell == 4 ? "Quadrilateral"
+                                 : "Hexahedron";
 }
 
 void check_unstructured(const UnstructuredGrid& g) {
   const bool ok = (g.dim == 2 && (g.nodes_per_cell == 4 || g.nodes_per_cell == 2)) ||
                   (g.dim == 3 && (g.nodes_per_cell == 8 || g.nodes_per_cell == 4));
   if (!ok) {
-    reject(fmt::format("unstructured grid must be dim 2 with 4 (quads) or 2 (segments) nodes per cell, or dim 3 "
-                       "with 8 (hexahedra) or 4 (surface quads), not dim {} with {}",
-                       g.dim, g.nodes_per_cell));
+    reject(
+        fmt::format("unstructured grid must be dim 2 with 4 (quads) or 2 (segments) nodes per cell, or dim 3 "
+                    "with 8 (hexahedra) or 4 (surface quads), not dim {} with {}",
+                    g.dim, g.nodes_per_cell));
   }
   if (g.num_nodes < 1 || g.num_cells < 1) reject("unstructured grid needs at least one node and one cell");
   if (g.coords == nullptr || g.connectivity == nullptr) reject("unstructured grid has no coordinates or connectivity");
   const std::int64_t n = g.num_cells * g.nodes_per_cell;
   for (std::int64_t i = 0; i < n; ++i) {
     if (g.connectivity[i] < 0 || g.connectivity[i] >= g.num_nodes) {
-      reject(fmt::format("connectivity entry {} = {} is not a node id (num_nodes {})", i, g.connectivity[i],
-                         g.num_nodes));
+      reject(
+          fmt::format("connectivity entry {} = {} is not a node id (num_nodes {})", i, g.connectivity[i], g.num_nodes));
     }
   }
 }
@@ -307,9 +307,7 @@ SnapshotSeries::SnapshotSeries(fs::path dir, std::string basename)
 
 fs::path SnapshotSeries::xdmf_path() const { return dir_ / (basename_ + ".xmf"); }
 
-std::string SnapshotSeries::file_name(std::size_t index) const {
-  return fmt::format("{}_{:06}.h5", basename_, index);
-}
+std::string SnapshotSeries::file_name(std::size_t index) const { return fmt::format("{}_{:06}.h5", basename_, index); }
 
 void SnapshotSeries::check_directory() const {
   std::error_code ec;

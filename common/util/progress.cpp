@@ -9,7 +9,10 @@
 namespace cosim::util {
 
 Progress::Progress(bool enabled, double delay, double interval)
-    : enabled_(enabled), tty_(isatty(2) != 0), delay_(delay), interval_(tty_ ? interval : 10.0),
+    : enabled_(enabled),
+      tty_(isatty(2) != 0),
+      delay_(delay),
+      interval_(tty_ ? interval : 10.0),
       start_(std::chrono::steady_clock::now()) {}
 
 double Progress::elapsed() const {

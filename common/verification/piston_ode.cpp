@@ -15,8 +15,8 @@ PistonEquilibrium piston_equilibrium(const PistonOde& p) {
   e.v_right = vt - e.v_left;
   e.pressure = kl / std::pow(e.v_left, p.gamma);
   e.x_eq = (e.v_left - p.v_left) / p.area;
-  e.omega = std::sqrt(p.gamma * p.area * p.area * e.pressure * (1.0 / e.v_left + 1.0 / e.v_right) /
-                      (p.mass + p.extra_mass));
+  e.omega =
+      std::sqrt(p.gamma * p.area * p.area * e.pressure * (1.0 / e.v_left + 1.0 / e.v_right) / (p.mass + p.extra_mass));
   return e;
 }
 

@@ -12,14 +12,14 @@
 namespace cosim::verification {
 
 struct PistonOde {
-  double area = 1.0;       // cross-section A [m^2]
-  double mass = 1.0;       // piston mass m [kg]
-  double extra_mass = 0.0; // effective added mass of the gas [kg] (0: the plain quasi-static ODE)
-  double p_left = 2.0;     // pL0 [Pa]
-  double p_right = 1.0;    // pR0 [Pa]
-  double v_left = 1.0;     // VL0 [m^3]
-  double v_right = 2.0;    // VR0 [m^3]
-  double gamma = 1.4;      // ratio of specific heats (1: isothermal chambers)
+  double area = 1.0;        // cross-section A [m^2]
+  double mass = 1.0;        // piston mass m [kg]
+  double extra_mass = 0.0;  // effective added mass of the gas [kg] (0: the plain quasi-static ODE)
+  double p_left = 2.0;      // pL0 [Pa]
+  double p_right = 1.0;     // pR0 [Pa]
+  double v_left = 1.0;      // VL0 [m^3]
+  double v_right = 2.0;     // VR0 [m^3]
+  double gamma = 1.4;       // ratio of specific heats (1: isothermal chambers)
 };
 
 struct PistonEquilibrium {
@@ -36,11 +36,11 @@ double piston_acceleration(const PistonOde& p, double x);
 
 struct PistonTrajectory {
   double dt = 0.0;
-  std::vector<double> x, v;  // at t = i dt
-  double x_at(double t) const;       // cubic Hermite between the RK4 samples [m]
-  double x_min() const;              // turning points [m]
+  std::vector<double> x, v;     // at t = i dt
+  double x_at(double t) const;  // cubic Hermite between the RK4 samples [m]
+  double x_min() const;         // turning points [m]
   double x_max() const;
-  double period() const;             // mean time between successive maxima of x [s] (0 if fewer than two)
+  double period() const;  // mean time between successive maxima of x [s] (0 if fewer than two)
 };
 
 // RK4 from x = v = 0 to t_end with step dt.

@@ -10,8 +10,8 @@
 //        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle, and with
 //        --extra-proposals N sends N more DtProposals right after its faces (a misbehaving peer).
 // Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <iostream>

@@ -20,9 +20,10 @@ int run_fluid_coupled(const RunOptions& opt) {
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
   if (!scene.embedded.bodies.empty()) {
-    spdlog::error("{}: fluid.embedded.bodies: a coupled run takes its embedded boundary from the solid; remove the "
-                  "bodies or run the fluid alone",
-                  opt.scene_file);
+    spdlog::error(
+        "{}: fluid.embedded.bodies: a coupled run takes its embedded boundary from the solid; remove the "
+        "bodies or run the fluid alone",
+        opt.scene_file);
     return 2;
   }
   if (!app::make_output_directory(opt.out_dir)) return 4;
@@ -59,9 +60,10 @@ int run_fluid_coupled(const RunOptions& opt) {
     const double ratio = d.dt / stable;
     max_step_over_stable = std::max(max_step_over_stable, ratio);
     if (ratio > 1.1 && !warned) {
-      spdlog::warn("cycle {}: the pipelined step {:.4g} s is {:.2f}x the stable step of this state (CFL {:.3g} -> "
-                   "{:.3g}); coupling.scheme: sequential avoids the lag",
-                   d.cycle, d.dt, ratio, scene.cfl, ratio * scene.cfl);
+      spdlog::warn(
+          "cycle {}: the pipelined step {:.4g} s is {:.2f}x the stable step of this state (CFL {:.3g} -> "
+          "{:.3g}); coupling.scheme: sequential avoids the lag",
+          d.cycle, d.dt, ratio, scene.cfl, ratio * scene.cfl);
       warned = true;
     }
   };
@@ -108,10 +110,11 @@ int run_fluid_coupled(const RunOptions& opt) {
     return res.code ? res.code : 4;
   }
   if (res.code == 0)
-    spdlog::info("done: t = {:.6g} in {} cycles, {:.2f} s wall ({:.2f} s flow solver, {:.2f} s geometry), {} "
-                 "snapshot(s) in {}",
-                 sim->time(), res.cycles, res.wall, solver_seconds, boundary->geometry_seconds(), series.count(),
-                 opt.out_dir.string());
+    spdlog::info(
+        "done: t = {:.6g} in {} cycles, {:.2f} s wall ({:.2f} s flow solver, {:.2f} s geometry), {} "
+        "snapshot(s) in {}",
+        sim->time(), res.cycles, res.wall, solver_seconds, boundary->geometry_seconds(), series.count(),
+        opt.out_dir.string());
   return res.code;
 }
 

@@ -4,12 +4,11 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
-
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
-#include "fluid_solver/io/fluid_output.h"
 #include "fluid_solver/app/run_summary.h"
+#include "fluid_solver/io/fluid_output.h"
 
 namespace cosim::fluid {
 
@@ -72,15 +71,16 @@ int run_fluid(const RunOptions& opt) {
     spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
     return 2;
   }
-  spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim,
-               sim->interior_cells(), scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
+  spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim, sim->interior_cells(),
+               scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
 
   app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "fluid");
   RunRecord rec;
   rec.start_totals = totals_json(scene, sim->totals());
-  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, 0.0,
-                              static_cast<double>(sim->interior_cells()), "Mcell-updates/s", opt.quiet};
+  app::DriveOptions drive_opt{
+      scene.output_times, scene.t_end, scene.max_steps, 0.0, static_cast<double>(sim->interior_cells()),
+      "Mcell-updates/s",  opt.quiet};
   const app::DriveResult res = app::drive(*sim, drive_opt, [&] { write_snapshot(series, *sim); });
   rec.status = res.status;
   rec.error = res.error;

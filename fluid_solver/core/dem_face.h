@@ -36,7 +36,7 @@ inline void cross_pair(const PhaseState<DIM>& Wp, const eos::StiffenedGas& ep, i
   f.mass += S * h.flux.mass;
   for (int d = 0; d < DIM; ++d) f.mom[d] += S * h.flux.mom[d];
   f.energy += S * h.flux.energy;
-  const double jump0 = p == 0 ? -1.0 : 1.0;  // [X_0] = delta_0q - delta_0p
+  const double jump0 = p == 0 ? -1.0 : 1.0;                  // [X_0] = delta_0q - delta_0p
   Lagrangian& lag = h.ustar > 0.0 ? r.to_right : r.to_left;  // the cell the contact enters
   lag.alpha += -S * jump0 * h.ustar;
   lag.mom += S * jump0 * h.pstar;
@@ -46,9 +46,9 @@ inline void cross_pair(const PhaseState<DIM>& Wp, const eos::StiffenedGas& ep, i
 // Full DEM face. `same_*` are the states used for the same-phase contacts (low-Mach corrected when
 // enabled), `L`/`R` the plain reconstructed states used for the cross contacts.
 template <FluxKind FK, int DIM, int NP, int D>
-inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[NP],
-                     const PhaseState<DIM> (&sameL)[NP], const PhaseState<DIM> (&sameR)[NP], double aL, double aR,
-                     const eos::StiffenedGas* eos, FaceResult<DIM, NP>& r) {
+inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[NP], const PhaseState<DIM> (&sameL)[NP],
+                     const PhaseState<DIM> (&sameR)[NP], double aL, double aR, const eos::StiffenedGas* eos,
+                     FaceResult<DIM, NP>& r) {
   if constexpr (NP == 1) {
     r.flux[0] = same_phase_flux<FK, DIM, D>(sameL[0], sameR[0], eos[0]);
   } else {
@@ -80,8 +80,7 @@ inline Lagrangian intra_cell_term(const PhaseState<DIM> (&Wm)[2], double am, con
   const double S01 = std::max(0.0, am - ap), S10 = std::max(0.0, ap - am);
   if (S01 > 0.0) cross_pair<DIM, 2, D>(Wm[0], eos[0], 0, Wp[1], eos[1], S01, r);
   if (S10 > 0.0) cross_pair<DIM, 2, D>(Wm[1], eos[1], 1, Wp[0], eos[0], S10, r);
-  return {r.to_left.alpha + r.to_right.alpha, r.to_left.mom + r.to_right.mom,
-          r.to_left.energy + r.to_right.energy};
+  return {r.to_left.alpha + r.to_right.alpha, r.to_left.mom + r.to_right.mom, r.to_left.energy + r.to_right.energy};
 }
 
 }  // namespace cosim::fluid

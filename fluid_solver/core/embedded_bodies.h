@@ -6,12 +6,12 @@
 // A decorator around the flow solver: in coupled runs the coupler feeds set_embedded instead.
 #pragma once
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
-#include <string>
 #include <memory>
+#include <string>
 
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
@@ -94,8 +94,11 @@ template <int DIM>
 class EmbeddedBodiesRun final : public FluidSimulation {
  public:
   EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
-      : inner_(std::move(inner)), g_(s.cells, s.lower, s.upper), surface_(embedded::surface_of(s.embedded, DIM)),
-        second_order_(s.embedded.second_order), ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
+      : inner_(std::move(inner)),
+        g_(s.cells, s.lower, s.upper),
+        surface_(embedded::surface_of(s.embedded, DIM)),
+        second_order_(s.embedded.second_order),
+        ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
     update();
@@ -133,8 +136,9 @@ class EmbeddedBodiesRun final : public FluidSimulation {
           coupled::sample_interface<DIM>(g_, geo_.category, *inner_, coupled::faces_of_surface(surface_));
       wall_pressure_ = coupled::wall_pressure_slots(smp, smp.pressure);
     }
-    inner_->set_embedded(to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),
-                         second_order_);
+    inner_->set_embedded(
+        to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),
+        second_order_);
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 

@@ -18,14 +18,14 @@ inline bool is_flow_cell(std::uint8_t k) { return k <= static_cast<std::uint8_t>
 
 // A ghost or solid-cut cell: its state comes from the image point (paper step 3, numerics.md 5.3).
 struct GhostRecord {
-  std::size_t cell = 0;                     // padded cell index
-  std::array<double, 3> normal{0, 0, 0};    // unit normal at the boundary intercept, solid -> fluid
+  std::size_t cell = 0;                   // padded cell index
+  std::array<double, 3> normal{0, 0, 0};  // unit normal at the boundary intercept, solid -> fluid
   std::array<double, 3> wall_velocity{0, 0, 0};
-  double distance = 0;                      // |phi| of the cell centre [m]
-  double image_distance = 0;                // |x_IP - x_G| [m] (2 |phi| for a mirror image point)
-  int stencil_size = 0;                     // flow cells used at the image point
-  std::array<std::size_t, 8> stencil{};     // padded indices
-  std::array<double, 8> weights{};          // sum to 1
+  double distance = 0;                   // |phi| of the cell centre [m]
+  double image_distance = 0;             // |x_IP - x_G| [m] (2 |phi| for a mirror image point)
+  int stencil_size = 0;                  // flow cells used at the image point
+  std::array<std::size_t, 8> stencil{};  // padded indices
+  std::array<double, 8> weights{};       // sum to 1
   // Interface pressure p_I per phase at the boundary intercept (paper step 5 "p_* = p_I": the coupler's, or
   // the fluid's extrapolated to the wall for the scene's bodies); when present, the ghost pressure is
   // extrapolated through the wall from it (ghost_fill.h).
@@ -35,21 +35,21 @@ struct GhostRecord {
 
 // A grid face between a flow cell and a ghost/solid-cut cell along direction D (paper steps 5-6).
 struct WallFace {
-  std::size_t fluid_cell = 0;   // cell 1 of the paper's Fig. 4
-  std::size_t fluid_cell2 = 0;  // cell 2: the next flow cell away from the wall (== fluid_cell if none)
-  std::size_t solid_cell = 0;   // cell 0: ghost or solid-cut
-  bool solid_on_high_side = true;  // the solid cell is at +e_D of the fluid cell
-  std::array<double, 3> normal{0, 0, 0};         // interface normal n_I (solid -> fluid)
+  std::size_t fluid_cell = 0;             // cell 1 of the paper's Fig. 4
+  std::size_t fluid_cell2 = 0;            // cell 2: the next flow cell away from the wall (== fluid_cell if none)
+  std::size_t solid_cell = 0;             // cell 0: ghost or solid-cut
+  bool solid_on_high_side = true;         // the solid cell is at +e_D of the fluid cell
+  std::array<double, 3> normal{0, 0, 0};  // interface normal n_I (solid -> fluid)
   std::array<double, 3> wall_velocity{0, 0, 0};  // interface velocity u_I
   double d = 0.5;  // distance from the fluid cell centre to the interface point I, in cells
 };
 
 struct EmbeddedState {
   bool active = false;
-  std::vector<std::uint8_t> kind;             // per padded cell (CellKind)
-  std::vector<GhostRecord> ghosts;            // ghost and solid-cut cells
-  std::array<std::vector<WallFace>, 3> faces; // per direction
-  double max_wall_speed = 0;                  // for the time step
+  std::vector<std::uint8_t> kind;              // per padded cell (CellKind)
+  std::vector<GhostRecord> ghosts;             // ghost and solid-cut cells
+  std::array<std::vector<WallFace>, 3> faces;  // per direction
+  double max_wall_speed = 0;                   // for the time step
 };
 
 }  // namespace cosim::fluid

@@ -3,12 +3,11 @@
 // keeps the interpolated tangential part and its normal part relative to the wall is extrapolated
 // linearly through the wall (u_G,n - u_w,n = -d_G/(L - d_G) (u_IP,n - u_w,n); the mirror image
 // point L = 2 d_G gives the reflection 2 u_w,n - u_IP,n), per phase.
-// Where the wall pressure p_I is known (GhostRecord::has_wall_pressure), the pressure is extrapolated through the wall the
-// same way, p_G = p_IP - L/(L - d_G) (p_IP - p_I), and the density along the isentrope of the image point:
-// an accelerating wall (dp/dn = -rho a_n, Euler's equation) or a curved one (dp/dn = rho u_t^2 / R) has a
-// pressure gradient at the wall that the even copy p_G = p_IP would remove, a first-order error at the
-// boundary. p_G + p_inf is kept within [1/2, 2] x (p_IP + p_inf), so a strong wave at the wall cannot make
-// the ghost inadmissible.
+// Where the wall pressure p_I is known (GhostRecord::has_wall_pressure), the pressure is extrapolated through the wall
+// the same way, p_G = p_IP - L/(L - d_G) (p_IP - p_I), and the density along the isentrope of the image point: an
+// accelerating wall (dp/dn = -rho a_n, Euler's equation) or a curved one (dp/dn = rho u_t^2 / R) has a pressure
+// gradient at the wall that the even copy p_G = p_IP would remove, a first-order error at the boundary. p_G + p_inf is
+// kept within [1/2, 2] x (p_IP + p_inf), so a strong wave at the wall cannot make the ghost inadmissible.
 #pragma once
 
 #include <algorithm>

@@ -9,9 +9,9 @@ namespace cosim::fluid {
 
 template <int DIM>
 struct Grid {
-  static constexpr int NG = 2;  // MUSCL needs two ghost layers
-  std::array<int, 3> n{1, 1, 1};        // interior cells per direction
-  std::array<int, 3> padded{1, 1, 1};   // with ghosts
+  static constexpr int NG = 2;         // MUSCL needs two ghost layers
+  std::array<int, 3> n{1, 1, 1};       // interior cells per direction
+  std::array<int, 3> padded{1, 1, 1};  // with ghosts
   std::array<std::ptrdiff_t, 3> stride{1, 0, 0};
   std::array<double, 3> lower{0, 0, 0}, dx{1, 1, 1};
   std::size_t total = 1;  // padded cell count

@@ -111,7 +111,8 @@ MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
   if (np > 1) {
     double s = 0;
     for (auto& v : out) s += v.alpha;
-    if (std::abs(s - 1.0) > 1e-9) n.fail("alpha", fmt::format("volume fractions that sum to 1 (they sum to {:.12g})", s));
+    if (std::abs(s - 1.0) > 1e-9)
+      n.fail("alpha", fmt::format("volume fractions that sum to 1 (they sum to {:.12g})", s));
   }
   n.finish();
   return out;
@@ -287,8 +288,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   if (auto num = f.optional_child("numerics")) {
     std::string flux = num->get<std::string>("flux", "aufs", config::one_of({"aufs", "hllc", "rusanov"}));
     s.flux = flux == "aufs" ? FluxKind::AUFS : flux == "hllc" ? FluxKind::HLLC : FluxKind::Rusanov;
-    std::string rec =
-        num->get<std::string>("reconstruction", "muscl", config::one_of({"first_order", "muscl"}));
+    std::string rec = num->get<std::string>("reconstruction", "muscl", config::one_of({"first_order", "muscl"}));
     s.reconstruction = rec == "muscl" ? Reconstruction::MUSCL : Reconstruction::FirstOrder;
     std::string lim = num->get<std::string>("limiter", "van_leer", config::one_of({"minmod", "van_leer", "mc"}));
     s.limiter = lim == "minmod" ? Limiter::Minmod : lim == "mc" ? Limiter::MC : Limiter::VanLeer;
@@ -307,17 +307,15 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   s.cfl = time.get<double>("cfl", 0.4, config::in_open_closed(0.0, 1.0));
   std::string integ = time.get<std::string>("integrator", "rk2", config::one_of({"rk2", "rk3"}));
   s.integrator = integ == "rk3" ? TimeIntegrator::RK3 : TimeIntegrator::RK2;
-  s.max_steps = time.get<long>("max_steps", 100000000L, [](const long& v) {
-    return v >= 1 ? std::string() : std::string("an integer >= 1");
-  });
+  s.max_steps = time.get<long>("max_steps", 100000000L,
+                               [](const long& v) { return v >= 1 ? std::string() : std::string("an integer >= 1"); });
   time.finish();
 
   // boundaries
   if (auto bn = f.optional_child("boundaries")) {
     for (int d = 0; d < s.dim; ++d)
       for (int side = 0; side < 2; ++side)
-        s.boundaries[d][side] =
-            read_boundary(*bn, kAxes[d] + (side == 0 ? "_lower" : "_upper"), s.phases, s.dim);
+        s.boundaries[d][side] = read_boundary(*bn, kAxes[d] + (side == 0 ? "_lower" : "_upper"), s.phases, s.dim);
     bn->finish();
     for (int d = 0; d < s.dim; ++d) {
       bool p0 = s.boundaries[d][0].kind == BoundaryKind::Periodic;
@@ -344,13 +342,14 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   // exchange
   if (auto ex = f.optional_child("exchange")) {
     s.exchange.pressure_relaxation = ex->get<bool>("pressure_relaxation", true);
-    std::string vr = ex->get<std::string>("velocity_relaxation", "instant", config::one_of({"none", "instant", "drag"}));
-    s.exchange.velocity = vr == "none" ? VelocityRelaxation::None
+    std::string vr =
+        ex->get<std::string>("velocity_relaxation", "instant", config::one_of({"none", "instant", "drag"}));
+    s.exchange.velocity = vr == "none"   ? VelocityRelaxation::None
                           : vr == "drag" ? VelocityRelaxation::Drag
                                          : VelocityRelaxation::Instant;
     std::string dl = ex->get<std::string>("drag_law", "schiller_naumann",
                                           config::one_of({"schiller_naumann", "clift_gauvin", "akhatov_vainshtein"}));
-    s.exchange.drag_law = dl == "clift_gauvin"        ? DragLaw::CliftGauvin
+    s.exchange.drag_law = dl == "clift_gauvin"         ? DragLaw::CliftGauvin
                           : dl == "akhatov_vainshtein" ? DragLaw::AkhatovVainshtein
                                                        : DragLaw::SchillerNaumann;
     std::string ht = ex->get<std::string>("heat_transfer", "none", config::one_of({"none", "ranz_marshall"}));

@@ -12,9 +12,9 @@
 
 #include <omp.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "fluid_solver/core/boundary.h"
 #include "fluid_solver/core/dem_face.h"
@@ -67,7 +67,8 @@ class Solver final : public FluidSimulation {
     emb_ = std::move(state);
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
-      std::sort(faces.begin(), faces.end(), [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
+      std::sort(faces.begin(), faces.end(),
+                [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
     if (emb_.active && emb_.kind.size() != g_.total)
       throw std::invalid_argument("embedded state: kind array does not match the grid");
   }
@@ -87,18 +88,20 @@ class Solver final : public FluidSimulation {
     const double* Wp[Lay::kPrim];
     for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
     const std::uint8_t* kind = emb_.active ? emb_.kind.data() : nullptr;
-    for_each_row([&](std::size_t base, int len, double& acc) {
-      for (int i = 0; i < len; ++i) {
-        const std::size_t c = base + i;
-        if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
-        for (int k = 0; k < NP; ++k) {
-          double s = 0;
-          const double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
-          for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
-          acc = std::max(acc, s);
-        }
-      }
-    }, smax);
+    for_each_row(
+        [&](std::size_t base, int len, double& acc) {
+          for (int i = 0; i < len; ++i) {
+            const std::size_t c = base + i;
+            if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
+            for (int k = 0; k < NP; ++k) {
+              double s = 0;
+              const double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
+              for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
+              acc = std::max(acc, s);
+            }
+          }
+        },
+        smax);
     if (emb_.active) {  // a moving body must not cross more than a CFL fraction of a cell per step
       double w = 0;
       for (int d = 0; d < DIM; ++d) w += emb_.max_wall_speed / g_.dx[d];
@@ -220,36 +223,38 @@ class Solver final : public FluidSimulation {
     double* Wp[Lay::kPrim];
     for (int v = 0; v < Lay::kCons; ++v) Uc[v] = U.var(v);
     for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
-    for_each_row([&](std::size_t base, int len, double& acc) {
-      for (int i = 0; i < len; ++i) {
-        const std::size_t c = base + i;
-        double a0 = 1.0;
-        if constexpr (NP == 2) {
-          a0 = Uc[Lay::alpha][c];
-          Wp[Lay::palpha][c] = a0;
-          acc = (a0 > 0.0 && a0 < 1.0) ? acc : 1.0;
-        }
-        for (int k = 0; k < NP; ++k) {
-          const double a = k == 0 ? a0 : 1.0 - a0;
-          const double m = Uc[Lay::mass(k)][c];
-          const double rho = m / a;
-          const double inv = 1.0 / m;
-          double q = 0;
-          for (int d = 0; d < DIM; ++d) {
-            const double u = Uc[Lay::mom(k, d)][c] * inv;
-            Wp[Lay::vel(k, d)][c] = u;
-            q += u * u;
+    for_each_row(
+        [&](std::size_t base, int len, double& acc) {
+          for (int i = 0; i < len; ++i) {
+            const std::size_t c = base + i;
+            double a0 = 1.0;
+            if constexpr (NP == 2) {
+              a0 = Uc[Lay::alpha][c];
+              Wp[Lay::palpha][c] = a0;
+              acc = (a0 > 0.0 && a0 < 1.0) ? acc : 1.0;
+            }
+            for (int k = 0; k < NP; ++k) {
+              const double a = k == 0 ? a0 : 1.0 - a0;
+              const double m = Uc[Lay::mass(k)][c];
+              const double rho = m / a;
+              const double inv = 1.0 / m;
+              double q = 0;
+              for (int d = 0; d < DIM; ++d) {
+                const double u = Uc[Lay::mom(k, d)][c] * inv;
+                Wp[Lay::vel(k, d)][c] = u;
+                q += u * u;
+              }
+              const double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+              const auto& e = eos_[k];
+              const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
+              const double c2 = e.gamma * (p + e.pinf) / rho;
+              Wp[Lay::rho(k)][c] = rho;
+              Wp[Lay::pres(k)][c] = p;
+              acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
+            }
           }
-          const double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
-          const auto& e = eos_[k];
-          const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
-          const double c2 = e.gamma * (p + e.pinf) / rho;
-          Wp[Lay::rho(k)][c] = rho;
-          Wp[Lay::pres(k)][c] = p;
-          acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
-        }
-      }
-    }, bad);
+        },
+        bad);
     if (bad > 0.0) report_bad_cell(U);
     if (&U == &U_) primitives_valid_ = true;
   }
@@ -276,7 +281,8 @@ class Solver final : public FluidSimulation {
           where += fmt::format(") at x=({:.6g}", g_.center(0, i));
           if (DIM > 1) where += fmt::format(", {:.6g}", g_.center(1, j));
           if (DIM > 2) where += fmt::format(", {:.6g}", g_.center(2, kk));
-          throw StateError(fmt::format("inadmissible state in {}) at t={:.9g} (step {}):{}", where, t_, steps_ + 1, msg));
+          throw StateError(
+              fmt::format("inadmissible state in {}) at t={:.9g} (step {}):{}", where, t_, steps_ + 1, msg));
         }
     throw StateError(fmt::format("inadmissible state at t={:.9g} (step {})", t_, steps_ + 1));
   }
@@ -296,34 +302,36 @@ class Solver final : public FluidSimulation {
       Rv[v] = R_.var(v);
     }
     double dummy = 0;
-    for_each_row([&](std::size_t base, int len, double&) {
-      for (int v = 0; v < Lay::kCons; ++v) {
-        double* u = Uv[v] + base;
-        const double* u0 = U0v[v] + base;
-        const double* r = Rv[v] + base;
-        if (emb_.active) {
-          // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
-          // the interior of a body is never read (fused here: no extra pass over the grid).
-          const std::uint8_t* kind = emb_.kind.data() + base;
-          for (int i = 0; i < len; ++i) {
-            const double un = a * u0[i] + b * (u[i] + dt * r[i]);
-            u[i] = is_flow_cell(kind[i]) ? un : u[i];
+    for_each_row(
+        [&](std::size_t base, int len, double&) {
+          for (int v = 0; v < Lay::kCons; ++v) {
+            double* u = Uv[v] + base;
+            const double* u0 = U0v[v] + base;
+            const double* r = Rv[v] + base;
+            if (emb_.active) {
+              // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
+              // the interior of a body is never read (fused here: no extra pass over the grid).
+              const std::uint8_t* kind = emb_.kind.data() + base;
+              for (int i = 0; i < len; ++i) {
+                const double un = a * u0[i] + b * (u[i] + dt * r[i]);
+                u[i] = is_flow_cell(kind[i]) ? un : u[i];
+              }
+            } else if (a == 0.0) {
+              for (int i = 0; i < len; ++i) u[i] += dt * r[i];
+            } else {
+              for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+            }
           }
-        } else if (a == 0.0) {
-          for (int i = 0; i < len; ++i) u[i] += dt * r[i];
-        } else {
-          for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
-        }
-      }
-      if constexpr (NP == 2) {
-        const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
-        const bool prelax = scene_.exchange.pressure_relaxation;
-        if (vrelax && prelax) relax_row<true, true>(base, len);
-        else if (vrelax) relax_row<true, false>(base, len);
-        else if (prelax) relax_row<false, true>(base, len);
-        else relax_row<false, false>(base, len);
-      }
-    }, dummy);
+          if constexpr (NP == 2) {
+            const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
+            const bool prelax = scene_.exchange.pressure_relaxation;
+            if (vrelax && prelax) relax_row<true, true>(base, len);
+            else if (vrelax) relax_row<true, false>(base, len);
+            else if (prelax) relax_row<false, true>(base, len);
+            else relax_row<false, false>(base, len);
+          }
+        },
+        dummy);
   }
 
   // After a step, the ghost and solid-cut cells keep the conservative form of their image-point
@@ -367,10 +375,9 @@ class Solver final : public FluidSimulation {
       const WallFace& wf = *it;
       const int f = static_cast<int>(high_cell(wf) - base);
       // Flow side: hi edge of the low cell or lo edge of the high cell; the solid side gets the mirror.
-      const double* from = wf.solid_on_high_side ? left_edges + Lay::kPrim * len_e + f + left_off
-                                                 : right_edges + f + right_off;
-      double* to = wf.solid_on_high_side ? right_edges + f + right_off
-                                         : left_edges + Lay::kPrim * len_e + f + left_off;
+      const double* from =
+          wf.solid_on_high_side ? left_edges + Lay::kPrim * len_e + f + left_off : right_edges + f + right_off;
+      double* to = wf.solid_on_high_side ? right_edges + f + right_off : left_edges + Lay::kPrim * len_e + f + left_off;
       for (int v = 0; v < Lay::kPrim; ++v) to[v * len_e] = from[v * len_e];
       for (int k = 0; k < NP; ++k) {
         double un = 0, uIn = 0;
@@ -445,17 +452,19 @@ class Solver final : public FluidSimulation {
     const bool drag = ex.velocity == VelocityRelaxation::Drag;
     if (!drag && !ex.heat_transfer) return;
     double dummy = 0;
-    for_each_row([&](std::size_t base, int len, double&) {
-      for (int i = 0; i < len; ++i) {
-        CellState2 s = load_cell(base + i);
-        if (drag) apply_drag(s, eos_, ex, DIM, dt);
-        if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
-        store_cell(base + i, s);
-      }
-      // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
-      // (vectorised row pass).
-      if (ex.pressure_relaxation) relax_row<false, true>(base, len);
-    }, dummy);
+    for_each_row(
+        [&](std::size_t base, int len, double&) {
+          for (int i = 0; i < len; ++i) {
+            CellState2 s = load_cell(base + i);
+            if (drag) apply_drag(s, eos_, ex, DIM, dt);
+            if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
+            store_cell(base + i, s);
+          }
+          // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
+          // (vectorised row pass).
+          if (ex.pressure_relaxation) relax_row<false, true>(base, len);
+        },
+        dummy);
   }
 
   CellState2 load_cell(std::size_t c) const {
@@ -672,12 +681,12 @@ class Solver final : public FluidSimulation {
   // Faces f in [0, len) of a row. Left states: hi edges of
   // `left_edges` at f + left_off; right states: lo edges of `right_edges` at f + right_off.
   template <int D, ReconMode RM>
-  void compute_faces(int len, const double* left_edges, int left_off, const double* right_edges,
-                     int right_off, double* buf, std::size_t flen) {
+  void compute_faces(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
+                     double* buf, std::size_t flen) {
     const bool lowmach = scene_.low_mach;
     const double cutoff = scene_.low_mach_cutoff;
     // Face f's reconstructed left/right phase states and phase-0 volume fractions.
-    auto load_face = [&](int f, PhaseState<DIM> (&L)[NP], PhaseState<DIM> (&R)[NP], double& aL, double& aR) {
+    auto load_face = [&](int f, PhaseState<DIM>(&L)[NP], PhaseState<DIM>(&R)[NP], double& aL, double& aR) {
       aL = aR = 1.0;
       for (int k = 0; k < NP; ++k) {
         L[k] = edge_state(left_edges, 1, k, f + left_off);
@@ -735,7 +744,8 @@ class Solver final : public FluidSimulation {
             for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] += res.flux[k].mom[d];
             buf[fvar_flux(k, 1 + DIM) * flen + f] += res.flux[k].energy;
           }
-          store_lagrangian(buf, flen, f, res.to_left, add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
+          store_lagrangian(buf, flen, f, res.to_left,
+                           add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
         }
       }
       return;
@@ -763,7 +773,8 @@ class Solver final : public FluidSimulation {
         buf[fvar_flux(k, 1 + DIM) * flen + f] = res.flux[k].energy;
       }
       if constexpr (NP == 2)
-        store_lagrangian(buf, flen, f, res.to_left, add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
+        store_lagrangian(buf, flen, f, res.to_left,
+                         add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
     }
   }
 

@@ -1,5 +1,5 @@
-#include <limits>
 #include "fluid_solver/coupled/interface_surface.h"
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -36,13 +36,13 @@ InterfaceSurface surface_from_faces(const coupling::Faces& f, int dim, double ba
   check_size("area", f.area.size(), n);
   check_size("face_vertex", f.face_vertex.size(), n * static_cast<std::size_t>(npf));
   if (f.vertex_position.size() % d != 0)
-    throw std::invalid_argument(
-        fmt::format("InterfaceFaces.vertex_position: {} values, not a multiple of dim = {}", f.vertex_position.size(), dim));
+    throw std::invalid_argument(fmt::format("InterfaceFaces.vertex_position: {} values, not a multiple of dim = {}",
+                                            f.vertex_position.size(), dim));
   const std::size_t nv = f.vertex_position.size() / d;
   for (std::size_t i = 0; i < f.face_vertex.size(); ++i)
     if (f.face_vertex[i] >= nv)
-      throw std::invalid_argument(fmt::format("InterfaceFaces.face_vertex[{}] = {} but there are {} vertices", i,
-                                              f.face_vertex[i], nv));
+      throw std::invalid_argument(
+          fmt::format("InterfaceFaces.face_vertex[{}] = {} but there are {} vertices", i, f.face_vertex[i], nv));
   for (double x : f.vertex_position)
     if (!std::isfinite(x)) throw std::invalid_argument("InterfaceFaces.vertex_position: not finite");
   for (double x : f.velocity)

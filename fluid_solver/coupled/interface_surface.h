@@ -17,11 +17,11 @@ struct InterfaceSurface {
 };
 
 // Builds the Surface of `faces` for a fluid grid of dimension `dim` (1, 2 or 3; the faces must have the same
-// dimension and carry vertex data: points, segments, triangles or quads). Vertex velocities are the area-weighted means of the adjacent faces'
-// velocities (exact for rigid motion). The vertices are moved back by `back_dt` times their velocity:
-// the solid has already advanced to t^{n+1}, the fluid state is at t^n, and the body is placed where it
-// was at t^n (the same explicit placement as prescribed motion). Face orientation follows the faces'
-// outward normals. Throws std::invalid_argument naming the field for malformed data.
+// dimension and carry vertex data: points, segments, triangles or quads). Vertex velocities are the area-weighted means
+// of the adjacent faces' velocities (exact for rigid motion). The vertices are moved back by `back_dt` times their
+// velocity: the solid has already advanced to t^{n+1}, the fluid state is at t^n, and the body is placed where it was
+// at t^n (the same explicit placement as prescribed motion). Face orientation follows the faces' outward normals.
+// Throws std::invalid_argument naming the field for malformed data.
 InterfaceSurface surface_from_faces(const coupling::Faces& faces, int dim, double back_dt);
 
 // The faces of a Surface as a solid would send them (centre, outward normal, measure, mean vertex velocity;

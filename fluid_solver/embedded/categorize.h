@@ -35,10 +35,13 @@ struct CategoryCounts {
 };
 
 template <int DIM>
-CategoryCounts categorize(const LevelSet<DIM>& centres, const LevelSet<DIM>& nodes, const std::vector<InterfaceSegment>& segments,
-                          int ghost_layers, std::vector<std::uint8_t>& category) {
-  constexpr auto kFluid = static_cast<std::uint8_t>(CellKind::Fluid), kFluidCut = static_cast<std::uint8_t>(CellKind::FluidCut),
-                 kSolidCut = static_cast<std::uint8_t>(CellKind::SolidCut), kGhost = static_cast<std::uint8_t>(CellKind::Ghost),
+CategoryCounts categorize(const LevelSet<DIM>& centres, const LevelSet<DIM>& nodes,
+                          const std::vector<InterfaceSegment>& segments, int ghost_layers,
+                          std::vector<std::uint8_t>& category) {
+  constexpr auto kFluid = static_cast<std::uint8_t>(CellKind::Fluid),
+                 kFluidCut = static_cast<std::uint8_t>(CellKind::FluidCut),
+                 kSolidCut = static_cast<std::uint8_t>(CellKind::SolidCut),
+                 kGhost = static_cast<std::uint8_t>(CellKind::Ghost),
                  kSolid = static_cast<std::uint8_t>(CellKind::Solid);
   CategoryCounts counts;
   const Lattice<DIM>& C = centres.lattice;

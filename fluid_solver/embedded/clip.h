@@ -16,13 +16,13 @@
 namespace cosim::fluid::embedded {
 
 struct InterfaceSegment {
-  std::size_t cell = 0;             // padded index of the owning cell (Grid::index)
-  std::array<int, 3> ijk{0, 0, 0};  // interior-numbered cell (negative / >= n in the ghost layers)
-  int face = -1;                    // source face of the Surface
-  Vec3 center{0, 0, 0};             // centroid of the piece
-  Vec3 normal{0, 0, 0};             // unit, solid -> fluid
-  Vec3 velocity{0, 0, 0};           // face velocity interpolated at the centre
-  double area = 0;                  // length (2D), area (3D), 1 (1D)
+  std::size_t cell = 0;                  // padded index of the owning cell (Grid::index)
+  std::array<int, 3> ijk{0, 0, 0};       // interior-numbered cell (negative / >= n in the ghost layers)
+  int face = -1;                         // source face of the Surface
+  Vec3 center{0, 0, 0};                  // centroid of the piece
+  Vec3 normal{0, 0, 0};                  // unit, solid -> fluid
+  Vec3 velocity{0, 0, 0};                // face velocity interpolated at the centre
+  double area = 0;                       // length (2D), area (3D), 1 (1D)
   int first_point = 0, point_count = 0;  // the piece's polygon in EmbeddedGeometry::segment_points
 };
 
@@ -60,7 +60,8 @@ inline std::array<double, 3> barycentric(const Vec3& x, const Vec3& a, const Vec
 
 // A piece lying in a face plane of the cell box belongs to the cell on its solid side (the side
 // opposite to the normal), so that each piece has exactly one owner and that owner is cut.
-inline bool owns_piece(const std::vector<Vec3>& pts, const Vec3& lo, const Vec3& hi, const Vec3& n, int dim, const Vec3& tol) {
+inline bool owns_piece(const std::vector<Vec3>& pts, const Vec3& lo, const Vec3& hi, const Vec3& n, int dim,
+                       const Vec3& tol) {
   for (std::size_t d = 0; d < static_cast<std::size_t>(dim); ++d) {
     bool on_lo = true, on_hi = true;
     for (const auto& p : pts) {
@@ -78,8 +79,9 @@ inline bool owns_piece(const std::vector<Vec3>& pts, const Vec3& lo, const Vec3&
 // Clips all faces of s to the cells of the padded grid. Pieces outside the padded grid are dropped, and so
 // are the faces on the domain wall (`walls`, geometry.h: domain_wall_faces). `tests` counts the clip tests.
 template <int DIM>
-void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& topo, std::vector<InterfaceSegment>& segments,
-                  std::vector<Vec3>& points, std::size_t& tests, const DomainWallFaces* walls = nullptr) {
+void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& topo,
+                  std::vector<InterfaceSegment>& segments, std::vector<Vec3>& points, std::size_t& tests,
+                  const DomainWallFaces* walls = nullptr) {
   segments.clear();
   points.clear();
   const Lattice<DIM> centres = centre_lattice(g), nodes = node_lattice(g);
@@ -157,7 +159,8 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
         }
         if (!(measure > 0)) return;
         c = (1.0 / measure) * acc;
-        bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]);
+        bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])],
+                                   s.vertices[static_cast<std::size_t>(fc[2])]);
       }
       if (measure <= min_measure) return;
       if (!detail::owns_piece(poly, blo, bhi, n, DIM, tol)) return;
@@ -176,7 +179,8 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
     });
   }
   // Sorted by owning cell (then face): the pieces of one cell are contiguous.
-  std::stable_sort(segments.begin(), segments.end(), [](const InterfaceSegment& x, const InterfaceSegment& y) { return x.cell < y.cell; });
+  std::stable_sort(segments.begin(), segments.end(),
+                   [](const InterfaceSegment& x, const InterfaceSegment& y) { return x.cell < y.cell; });
 }
 
 }  // namespace cosim::fluid::embedded

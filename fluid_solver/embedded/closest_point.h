@@ -79,7 +79,8 @@ inline ClosestPoint closest_on_face(const Surface& s, int f, const Vec3& p) {
     return r;
   }
   if (s.dim == 2) return closest_on_segment(p, a, s.vertices[static_cast<std::size_t>(fc[1])]);
-  return closest_on_triangle(p, a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]);
+  return closest_on_triangle(p, a, s.vertices[static_cast<std::size_t>(fc[1])],
+                             s.vertices[static_cast<std::size_t>(fc[2])]);
 }
 
 }  // namespace cosim::fluid::embedded

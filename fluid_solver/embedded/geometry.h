@@ -20,18 +20,20 @@
 namespace cosim::fluid::embedded {
 
 struct GeometryOptions {
-  double band_cells = 3;    // narrow band half-width at centres [cells of the largest dx]; raised to cover the ghost layers
+  double band_cells =
+      3;  // narrow band half-width at centres [cells of the largest dx]; raised to cover the ghost layers
   double node_band_cells = 1.5;  // band at nodes: Table 1 needs only their sign (exact |phi_N| below it); >= 1.5
-  int ghost_layers = 2;     // MUSCL reach: ghosts are solid cells within this many cells of a flow cell
-  double opposite_cos = -0.9;  // thin-body test (thin_body.h)
-  int thin_reach = 1;          // ghost layers checked for two-sided use (thin_body.h, T1)
-  bool refuse_thin = true;  // throw on thin bodies (else only list them in EmbeddedGeometry::thin)
+  int ghost_layers = 2;          // MUSCL reach: ghosts are solid cells within this many cells of a flow cell
+  double opposite_cos = -0.9;    // thin-body test (thin_body.h)
+  int thin_reach = 1;            // ghost layers checked for two-sided use (thin_body.h, T1)
+  bool refuse_thin = true;       // throw on thin bodies (else only list them in EmbeddedGeometry::thin)
   ImagePointOptions image{};
   // Directions whose domain boundary is periodic: there a body face on the boundary plane has fluid behind
   // it. On other sides a face that lies in the boundary plane with its solid inside the domain is the domain
   // wall already: it gives no segments and no closest face inside the domain (domain_wall_faces()).
   std::array<bool, 3> periodic{false, false, false};
-  bool flat_face_prisms = true;  // faces inside a flat region scan only their prism (signed_distance.h); off: for benchmarks
+  bool flat_face_prisms =
+      true;  // faces inside a flat region scan only their prism (signed_distance.h); off: for benchmarks
 };
 
 // Faces of s that lie in a non-periodic boundary plane of the domain with their normal pointing out of it
@@ -55,7 +57,7 @@ DomainWallFaces domain_wall_faces(const Grid<DIM>& g, const Surface& s, const Su
     for (std::size_t d = 0; d < static_cast<std::size_t>(DIM) && !w.code[f]; ++d) {
       if (periodic[d]) continue;
       const double nd = topo.face_normal[f][d];
-      bool on_lo = nd < -0.5, on_hi = nd > 0.5;
+      bool on_lo = nd<-0.5, on_hi = nd> 0.5;
       for (int k = 0; k < nv; ++k) {
         const double x = s.vertices[static_cast<std::size_t>(s.faces[f][static_cast<std::size_t>(k)])][d];
         on_lo = on_lo && std::abs(x - w.lower[d]) <= w.tol[d];
@@ -128,8 +130,9 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   e.category.resize(g.total);
   e.centres.lattice = centre_lattice(g);
   e.nodes.lattice = node_lattice(g);
-  compute_level_set(e.centres, s, topo, e.band_width, e.work.distance_tests, &e.category, static_cast<std::uint8_t>(CellKind::Fluid),
-                    static_cast<std::uint8_t>(CellKind::Solid), &skip, opt.flat_face_prisms);
+  compute_level_set(e.centres, s, topo, e.band_width, e.work.distance_tests, &e.category,
+                    static_cast<std::uint8_t>(CellKind::Fluid), static_cast<std::uint8_t>(CellKind::Solid), &skip,
+                    opt.flat_face_prisms);
   compute_level_set(e.nodes, s, topo, node_band, e.work.distance_tests, nullptr, 0, 0, &skip, opt.flat_face_prisms);
   e.work.band_centres = e.centres.band.size();
   e.work.band_nodes = e.nodes.band.size();
@@ -141,7 +144,8 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   const auto t5 = clock::now();
   build_image_points(g, e.centres, s, e.category, e.image_points, opt.image);
   const auto t6 = clock::now();
-  e.timing = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4), seconds(t5, t6), seconds(t4, t5), seconds(t0, t6)};
+  e.timing = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4),
+              seconds(t5, t6), seconds(t4, t5), seconds(t0, t6)};
 }
 
 template <int DIM>

@@ -20,19 +20,19 @@
 namespace cosim::fluid::embedded {
 
 struct ImagePoint {
-  std::size_t cell = 0;             // padded index (Grid::index)
-  std::array<int, 3> ijk{0, 0, 0};  // interior-numbered cell
-  CellKind kind = CellKind::Ghost;  // Ghost or SolidCut
-  double phi = 0;                   // signed distance of the centre (< 0)
-  Vec3 x_cell{0, 0, 0};             // x_G
-  Vec3 x_boundary{0, 0, 0};         // x_BI, the closest surface point
-  Vec3 normal{0, 0, 0};             // n at x_BI, unit, solid -> fluid
-  Vec3 wall_velocity{0, 0, 0};      // interpolated from the face's vertex velocities at x_BI
-  int face = -1;                    // face of x_BI
-  Vec3 x_image{0, 0, 0};            // x_IP
-  double image_distance = 0;        // |x_IP - x_G|
-  int pushes = 0;                   // fallback pushes of the image point (0 normally)
-  int stencil_size = 0;             // 2^DIM
+  std::size_t cell = 0;                  // padded index (Grid::index)
+  std::array<int, 3> ijk{0, 0, 0};       // interior-numbered cell
+  CellKind kind = CellKind::Ghost;       // Ghost or SolidCut
+  double phi = 0;                        // signed distance of the centre (< 0)
+  Vec3 x_cell{0, 0, 0};                  // x_G
+  Vec3 x_boundary{0, 0, 0};              // x_BI, the closest surface point
+  Vec3 normal{0, 0, 0};                  // n at x_BI, unit, solid -> fluid
+  Vec3 wall_velocity{0, 0, 0};           // interpolated from the face's vertex velocities at x_BI
+  int face = -1;                         // face of x_BI
+  Vec3 x_image{0, 0, 0};                 // x_IP
+  double image_distance = 0;             // |x_IP - x_G|
+  int pushes = 0;                        // fallback pushes of the image point (0 normally)
+  int stencil_size = 0;                  // 2^DIM
   std::array<std::size_t, 8> stencil{};  // padded cell indices; node k has offsets (k&1, k>>1&1, k>>2&1)
   std::array<double, 8> bilinear{};      // plain (bi/tri)linear weights at x_IP
   std::array<double, 8> weights{};       // weights to use: 0 on non-flow nodes, sum 1
@@ -47,7 +47,8 @@ struct ImagePointOptions {
 namespace detail {
 
 template <int DIM>
-void build_stencil(const Lattice<DIM>& C, const std::vector<std::uint8_t>& category, ImagePoint& ip, double& flow_weight) {
+void build_stencil(const Lattice<DIM>& C, const std::vector<std::uint8_t>& category, ImagePoint& ip,
+                   double& flow_weight) {
   std::array<int, 3> base{0, 0, 0};
   std::array<double, 3> t{0, 0, 0};
   for (int d = 0; d < DIM; ++d) {
@@ -76,8 +77,9 @@ void build_stencil(const Lattice<DIM>& C, const std::vector<std::uint8_t>& categ
 // Builds the records of all ghost and solid-cut cells of the band into `out`. Throws
 // std::runtime_error when no flow cell can be found near an image point even after the pushes.
 template <int DIM>
-void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const Surface& s, const std::vector<std::uint8_t>& category,
-                        std::vector<ImagePoint>& out, const ImagePointOptions& opt = {}) {
+void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const Surface& s,
+                        const std::vector<std::uint8_t>& category, std::vector<ImagePoint>& out,
+                        const ImagePointOptions& opt = {}) {
   out.clear();
   const Lattice<DIM>& C = centres.lattice;
   double hmax = 0;
@@ -105,7 +107,8 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     }
     bool outside = false;  // a ghost layer of the domain: its boundary condition applies there
     for (int d = 0; d < DIM; ++d)
-      outside = outside || ip.ijk[static_cast<std::size_t>(d)] < 0 || ip.ijk[static_cast<std::size_t>(d)] >= g.n[static_cast<std::size_t>(d)];
+      outside = outside || ip.ijk[static_cast<std::size_t>(d)] < 0 ||
+                ip.ijk[static_cast<std::size_t>(d)] >= g.n[static_cast<std::size_t>(d)];
     if (!(flow_weight > 0) && outside) {
       ip.stencil_size = 0;  // the ghost fill leaves the cell to the domain boundary condition
       out.push_back(ip);
@@ -113,8 +116,8 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     }
     if (!(flow_weight > 0)) {
       std::ostringstream msg;
-      msg << "embedded geometry: no fluid cell around the image point of cell (" << ip.ijk[0] << ", " << ip.ijk[1] << ", " << ip.ijk[2]
-          << ") at x = (" << ip.x_cell[0] << ", " << ip.x_cell[1] << ", " << ip.x_cell[2]
+      msg << "embedded geometry: no fluid cell around the image point of cell (" << ip.ijk[0] << ", " << ip.ijk[1]
+          << ", " << ip.ijk[2] << ") at x = (" << ip.x_cell[0] << ", " << ip.x_cell[1] << ", " << ip.x_cell[2]
           << "): the body or the fluid gap there is thinner than the grid resolves; refine the grid";
       throw std::runtime_error(msg.str());
     }

@@ -19,11 +19,15 @@ struct Lattice {
   std::size_t size = 1;
 
   double coord(int d, int I) const {
-    return d < DIM ? lower[static_cast<std::size_t>(d)] + (static_cast<double>(I) + shift[static_cast<std::size_t>(d)]) * dx[static_cast<std::size_t>(d)] : 0.0;
+    return d < DIM ? lower[static_cast<std::size_t>(d)] +
+                         (static_cast<double>(I) + shift[static_cast<std::size_t>(d)]) * dx[static_cast<std::size_t>(d)]
+                   : 0.0;
   }
   Vec3 point(int I, int J, int K) const { return {coord(0, I), coord(1, J), coord(2, K)}; }
   std::size_t index(int I, int J, int K) const {
-    return static_cast<std::size_t>(I) + static_cast<std::size_t>(count[0]) * (static_cast<std::size_t>(J) + static_cast<std::size_t>(count[1]) * static_cast<std::size_t>(K));
+    return static_cast<std::size_t>(I) +
+           static_cast<std::size_t>(count[0]) *
+               (static_cast<std::size_t>(J) + static_cast<std::size_t>(count[1]) * static_cast<std::size_t>(K));
   }
   std::array<int, 3> ijk(std::size_t idx) const {
     const auto c0 = static_cast<std::size_t>(count[0]), c1 = static_cast<std::size_t>(count[1]);

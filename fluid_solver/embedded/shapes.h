@@ -66,8 +66,10 @@ inline Surface make_polygon(std::vector<Point2> v, const Vec3& velocity = {0, 0,
 }
 
 // 2D circle as a regular polygon with `segments` edges, vertices at angles phase + 2 pi k / segments.
-inline Surface make_circle(const Vec3& center, double radius, int segments, const Vec3& velocity = {0, 0, 0}, double phase = 0) {
-  if (segments < 3 || !(radius > 0)) throw std::runtime_error("embedded shape: circle needs radius > 0 and >= 3 segments");
+inline Surface make_circle(const Vec3& center, double radius, int segments, const Vec3& velocity = {0, 0, 0},
+                           double phase = 0) {
+  if (segments < 3 || !(radius > 0))
+    throw std::runtime_error("embedded shape: circle needs radius > 0 and >= 3 segments");
   std::vector<Point2> v;
   for (int k = 0; k < segments; ++k) {
     const double a = phase + 2 * std::numbers::pi * k / segments;
@@ -96,7 +98,8 @@ inline std::vector<std::array<int, 3>> triangulate(const std::vector<Point2>& p)
       if (cross2(a, b, c) <= 0) continue;  // reflex or flat
       bool empty = true;
       for (int q : idx)
-        if (q != a && q != b && q != c && cross2(a, b, q) >= 0 && cross2(b, c, q) >= 0 && cross2(c, a, q) >= 0) empty = false;
+        if (q != a && q != b && q != c && cross2(a, b, q) >= 0 && cross2(b, c, q) >= 0 && cross2(c, a, q) >= 0)
+          empty = false;
       if (!empty) continue;
       tris.push_back({a, b, c});
       idx.erase(idx.begin() + static_cast<std::ptrdiff_t>(k));
@@ -111,14 +114,16 @@ inline std::vector<std::array<int, 3>> triangulate(const std::vector<Point2>& p)
 
 // 3D prism: a simple 2D profile (x, y) extruded over z in [z0, z1].
 inline Surface make_extrusion(std::vector<Point2> profile, double z0, double z1, const Vec3& velocity = {0, 0, 0}) {
-  if (profile.size() < 3 || !(z1 > z0)) throw std::runtime_error("embedded shape: extrusion needs >= 3 profile points and z1 > z0");
+  if (profile.size() < 3 || !(z1 > z0))
+    throw std::runtime_error("embedded shape: extrusion needs >= 3 profile points and z1 > z0");
   if (signed_area(profile) < 0) std::reverse(profile.begin(), profile.end());
   Surface s;
   s.dim = 3;
   const int n = static_cast<int>(profile.size());
   for (const auto& p : profile) add_vertex(s, {p[0], p[1], z0}, velocity);
   for (const auto& p : profile) add_vertex(s, {p[0], p[1], z1}, velocity);
-  for (int k = 0; k < n; ++k) add_quad(s, k, (k + 1) % n, n + (k + 1) % n, n + k);  // sides, normal to the right of the edge
+  for (int k = 0; k < n; ++k)
+    add_quad(s, k, (k + 1) % n, n + (k + 1) % n, n + k);  // sides, normal to the right of the edge
   for (const auto& t : detail::triangulate(profile)) {
     s.faces.push_back({n + t[0], n + t[1], n + t[2]});  // top cap, +z
     s.faces.push_back({t[0], t[2], t[1]});              // bottom cap, -z
@@ -127,7 +132,8 @@ inline Surface make_extrusion(std::vector<Point2> profile, double z0, double z1,
 }
 
 // Box [lo, hi] (2D rectangle or 3D box), rotated by rotation_deg about z through its centre.
-inline Surface make_box(int dim, const Vec3& lo, const Vec3& hi, const Vec3& velocity = {0, 0, 0}, double rotation_deg = 0) {
+inline Surface make_box(int dim, const Vec3& lo, const Vec3& hi, const Vec3& velocity = {0, 0, 0},
+                        double rotation_deg = 0) {
   const std::vector<Point2> rect{{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}};
   Surface s;
   if (dim == 1) return make_interval(lo[0], hi[0], velocity[0]);
@@ -141,7 +147,8 @@ inline Surface make_box(int dim, const Vec3& lo, const Vec3& hi, const Vec3& vel
 // The boundary of a structured solid mesh of the box [lo, hi] with n[d] cells along d, as a solid solver sends it
 // (many coplanar faces): 2D segments, counter-clockwise; 3D quads (two triangles each), counter-clockwise seen
 // from outside. Rotated by rotation_deg about z through the box centre.
-inline Surface make_subdivided_box(int dim, const Vec3& lo, const Vec3& hi, const std::array<int, 3>& n, double rotation_deg = 0) {
+inline Surface make_subdivided_box(int dim, const Vec3& lo, const Vec3& hi, const std::array<int, 3>& n,
+                                   double rotation_deg = 0) {
   if (dim < 2 || dim > 3 || n[0] < 1 || n[1] < 1 || (dim == 3 && n[2] < 1))
     throw std::runtime_error("embedded shape: subdivided box needs dim 2 or 3 and at least one cell per direction");
   Surface s;
@@ -193,7 +200,8 @@ inline Surface make_step(int dim, const Vec3& lo, const Vec3& hi, const Vec3& ve
 // 3D icosphere: the icosahedron subdivided `refinement` times (faces 20 * 4^refinement), vertices
 // projected onto the sphere.
 inline Surface make_sphere(const Vec3& center, double radius, int refinement, const Vec3& velocity = {0, 0, 0}) {
-  if (refinement < 0 || refinement > 8 || !(radius > 0)) throw std::runtime_error("embedded shape: sphere needs radius > 0 and refinement in [0, 8]");
+  if (refinement < 0 || refinement > 8 || !(radius > 0))
+    throw std::runtime_error("embedded shape: sphere needs radius > 0 and refinement in [0, 8]");
   const double g = (1 + std::sqrt(5.0)) / 2;
   std::vector<Vec3> v;  // icosahedron: cyclic permutations of (0, +-1, +-g), edge length 2
   for (int s1 : {-1, 1})
@@ -204,13 +212,16 @@ inline Surface make_sphere(const Vec3& center, double radius, int refinement, co
     }
   std::vector<std::array<int, 3>> f;
   const int nv = static_cast<int>(v.size());
-  auto is_edge = [&](int a, int b) { return std::abs(norm(v[static_cast<std::size_t>(a)] - v[static_cast<std::size_t>(b)]) - 2.0) < 1e-9; };
+  auto is_edge = [&](int a, int b) {
+    return std::abs(norm(v[static_cast<std::size_t>(a)] - v[static_cast<std::size_t>(b)]) - 2.0) < 1e-9;
+  };
   for (int a = 0; a < nv; ++a)
     for (int b = a + 1; b < nv; ++b)
       for (int c = b + 1; c < nv; ++c)
         if (is_edge(a, b) && is_edge(b, c) && is_edge(a, c)) {
           const Vec3& A = v[static_cast<std::size_t>(a)];
-          const bool outward = dot(cross(v[static_cast<std::size_t>(b)] - A, v[static_cast<std::size_t>(c)] - A), A) > 0;
+          const bool outward =
+              dot(cross(v[static_cast<std::size_t>(b)] - A, v[static_cast<std::size_t>(c)] - A), A) > 0;
           f.push_back(outward ? std::array<int, 3>{a, b, c} : std::array<int, 3>{a, c, b});
         }
   for (auto& x : v) x = normalized(x);

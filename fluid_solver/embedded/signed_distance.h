@@ -24,10 +24,10 @@
 namespace cosim::fluid::embedded {
 
 struct BandPoint {
-  std::size_t index = 0;  // lattice index
-  int face = -1;          // closest face
-  Vec3 closest{0, 0, 0};  // closest surface point (boundary intercept)
-  Vec3 normal{0, 0, 0};   // unit, solid -> fluid: (x - closest)/phi, or the pseudo-normal when phi ~ 0
+  std::size_t index = 0;                // lattice index
+  int face = -1;                        // closest face
+  Vec3 closest{0, 0, 0};                // closest surface point (boundary intercept)
+  Vec3 normal{0, 0, 0};                 // unit, solid -> fluid: (x - closest)/phi, or the pseudo-normal when phi ~ 0
   std::array<double, 3> bary{0, 0, 0};  // of `closest` in `face`
   double d2 = 0;                        // squared distance (scatter minimum)
 };
@@ -50,8 +50,8 @@ struct DomainWallFaces {
 template <int DIM>
 struct LevelSet {
   Lattice<DIM> lattice;
-  std::vector<double> phi;    // per lattice point: exact in the band, +-band_width outside
-  std::vector<int> slot;      // index into band, -1 outside the band
+  std::vector<double> phi;  // per lattice point: exact in the band, +-band_width outside
+  std::vector<int> slot;    // index into band, -1 outside the band
   std::vector<BandPoint> band;
   double band_width = 0;
   // What the dense fill of the previous cycle was made for (the incremental update needs the same).
@@ -61,7 +61,9 @@ struct LevelSet {
   const void* filled_category = nullptr;
   double filled_band_width = 0;
   std::vector<std::pair<std::size_t, bool>> previous;  // scratch: last band (index, phi >= 0)
-  const BandPoint* at(std::size_t idx) const { return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])]; }
+  const BandPoint* at(std::size_t idx) const {
+    return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])];
+  }
 };
 
 // A face inside a flat region: in 3D its three edges, in 2D its two vertices, join it to faces with the same
@@ -93,7 +95,8 @@ inline bool flat_face(const Surface& s, const SurfaceTopology& topo, std::size_t
 // for the near-flat joints (an angle below 1.5e-4 rad leaves a gap below 1.5e-4 of the band).
 inline Vec3 prism_growth(const Vec3& n, double band_width) {
   const double margin = 1e-3 * band_width;
-  return Vec3{band_width * std::abs(n[0]) + margin, band_width * std::abs(n[1]) + margin, band_width * std::abs(n[2]) + margin};
+  return Vec3{band_width * std::abs(n[0]) + margin, band_width * std::abs(n[1]) + margin,
+              band_width * std::abs(n[2]) + margin};
 }
 
 // Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
@@ -101,9 +104,9 @@ inline Vec3 prism_growth(const Vec3& n, double band_width) {
 // Reusing `ls` from the previous cycle (same lattice) clears only the previous band; the dense row fill
 // of phi (and category) is skipped when the surface moved by less than half the band width.
 template <int DIM>
-void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width, std::size_t& tests,
-                       std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0,
-                       const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
+void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
+                       std::size_t& tests, std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0,
+                       std::uint8_t solid = 0, const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
   const Lattice<DIM>& L = ls.lattice;
   const double bw2 = band_width * band_width;
   bool incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
@@ -205,9 +208,11 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
   std::sort(sorted.begin(), sorted.end());
   auto fill = [&](std::size_t b, std::size_t e, bool positive) {
     if (b >= e) return;
-    std::fill(ls.phi.begin() + static_cast<std::ptrdiff_t>(b), ls.phi.begin() + static_cast<std::ptrdiff_t>(e), positive ? band_width : -band_width);
+    std::fill(ls.phi.begin() + static_cast<std::ptrdiff_t>(b), ls.phi.begin() + static_cast<std::ptrdiff_t>(e),
+              positive ? band_width : -band_width);
     if (category)
-      std::fill(category->begin() + static_cast<std::ptrdiff_t>(b), category->begin() + static_cast<std::ptrdiff_t>(e), positive ? fluid : solid);
+      std::fill(category->begin() + static_cast<std::ptrdiff_t>(b), category->begin() + static_cast<std::ptrdiff_t>(e),
+                positive ? fluid : solid);
   };
   std::size_t pos = 0;
   const auto row = static_cast<std::size_t>(L.count[0]);

@@ -72,7 +72,8 @@ inline Vec3 face_normal(const Surface& s, int f, double* measure = nullptr) {
     n = normalized(Vec3{t[1], -t[0], 0});
   } else {
     const Vec3& a = s.vertices[static_cast<std::size_t>(fc[0])];
-    const Vec3 c = cross(s.vertices[static_cast<std::size_t>(fc[1])] - a, s.vertices[static_cast<std::size_t>(fc[2])] - a);
+    const Vec3 c =
+        cross(s.vertices[static_cast<std::size_t>(fc[1])] - a, s.vertices[static_cast<std::size_t>(fc[2])] - a);
     m = 0.5 * norm(c);
     n = normalized(c);
   }
@@ -97,7 +98,8 @@ inline double enclosed_volume(const Surface& s) {
     const Vec3& a = s.vertices[static_cast<std::size_t>(f[0])];
     if (s.dim == 1) v += (f[1] > 0 ? 1.0 : -1.0) * a[0];
     else if (s.dim == 2) v += 0.5 * cross(a, s.vertices[static_cast<std::size_t>(f[1])])[2];
-    else v += dot(a, cross(s.vertices[static_cast<std::size_t>(f[1])], s.vertices[static_cast<std::size_t>(f[2])])) / 6.0;
+    else
+      v += dot(a, cross(s.vertices[static_cast<std::size_t>(f[1])], s.vertices[static_cast<std::size_t>(f[2])])) / 6.0;
   }
   return v;
 }
@@ -161,7 +163,8 @@ inline SurfaceTopology build_topology(const Surface& s) {
     for (int k = 0; k < nid; ++k)
       if (s.faces[f][static_cast<std::size_t>(k)] < 0 || s.faces[f][static_cast<std::size_t>(k)] >= nv)
         fail("face " + std::to_string(f) + " has a vertex id out of range");
-    if (s.dim == 1 && std::abs(s.faces[f][1]) != 1) fail("1D face " + std::to_string(f) + " needs an orientation of +1 or -1");
+    if (s.dim == 1 && std::abs(s.faces[f][1]) != 1)
+      fail("1D face " + std::to_string(f) + " needs an orientation of +1 or -1");
     t.face_normal[f] = face_normal(s, static_cast<int>(f), &t.face_measure[f]);
     if (!(t.face_measure[f] > 0)) fail("face " + std::to_string(f) + " is degenerate (zero length/area)");
   }
@@ -169,10 +172,12 @@ inline SurfaceTopology build_topology(const Surface& s) {
     std::vector<std::size_t> order(nf);
     for (std::size_t f = 0; f < nf; ++f) order[f] = f;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return s.vertices[static_cast<std::size_t>(s.faces[a][0])][0] < s.vertices[static_cast<std::size_t>(s.faces[b][0])][0];
+      return s.vertices[static_cast<std::size_t>(s.faces[a][0])][0] <
+             s.vertices[static_cast<std::size_t>(s.faces[b][0])][0];
     });
     for (std::size_t k = 0; k < nf; ++k)
-      if (s.faces[order[k]][1] != (k % 2 == 0 ? -1 : 1)) fail("1D faces must alternate -x/+x along x (closed intervals)");
+      if (s.faces[order[k]][1] != (k % 2 == 0 ? -1 : 1))
+        fail("1D faces must alternate -x/+x along x (closed intervals)");
     for (std::size_t f = 0; f < nf; ++f) t.vertex_normal[static_cast<std::size_t>(s.faces[f][0])] = t.face_normal[f];
     return t;
   }
@@ -193,20 +198,24 @@ inline SurfaceTopology build_topology(const Surface& s) {
   // 3D: every directed edge (u,v) once and its reverse (v,u) once.
   std::unordered_map<std::uint64_t, int> directed;
   directed.reserve(3 * nf);
-  auto key = [](int u, int v) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v); };
+  auto key = [](int u, int v) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
+  };
   t.face_edges.resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& fc = s.faces[f];
     for (int k = 0; k < 3; ++k) {
       const int u = fc[static_cast<std::size_t>(k)], v = fc[static_cast<std::size_t>((k + 1) % 3)];
       if (!directed.emplace(key(u, v), static_cast<int>(f)).second)
-        fail("edge (" + std::to_string(u) + "," + std::to_string(v) + ") is used twice in the same direction (non-manifold or inconsistent orientation)");
+        fail("edge (" + std::to_string(u) + "," + std::to_string(v) +
+             ") is used twice in the same direction (non-manifold or inconsistent orientation)");
       // angle-weighted vertex normal
       const Vec3& x = s.vertices[static_cast<std::size_t>(u)];
       const Vec3 e1 = s.vertices[static_cast<std::size_t>(v)] - x;
       const Vec3 e2 = s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>((k + 2) % 3)])] - x;
       const double angle = std::atan2(norm(cross(e1, e2)), dot(e1, e2));
-      t.vertex_normal[static_cast<std::size_t>(u)] = t.vertex_normal[static_cast<std::size_t>(u)] + angle * t.face_normal[f];
+      t.vertex_normal[static_cast<std::size_t>(u)] =
+          t.vertex_normal[static_cast<std::size_t>(u)] + angle * t.face_normal[f];
     }
   }
   std::unordered_map<std::uint64_t, int> edge_id;
@@ -217,9 +226,11 @@ inline SurfaceTopology build_topology(const Surface& s) {
       const int u = fc[static_cast<std::size_t>(k)], v = fc[static_cast<std::size_t>((k + 1) % 3)];
       if (directed.find(key(v, u)) == directed.end())
         fail("the surface is not closed: edge (" + std::to_string(u) + "," + std::to_string(v) + ") has one face only");
-      const auto [it, fresh] = edge_id.emplace(key(std::min(u, v), std::max(u, v)), static_cast<int>(t.edge_normal.size()));
+      const auto [it, fresh] =
+          edge_id.emplace(key(std::min(u, v), std::max(u, v)), static_cast<int>(t.edge_normal.size()));
       if (fresh) t.edge_normal.push_back(Vec3{0, 0, 0});
-      t.edge_normal[static_cast<std::size_t>(it->second)] = t.edge_normal[static_cast<std::size_t>(it->second)] + t.face_normal[f];
+      t.edge_normal[static_cast<std::size_t>(it->second)] =
+          t.edge_normal[static_cast<std::size_t>(it->second)] + t.face_normal[f];
       t.face_edges[f][static_cast<std::size_t>(k)] = it->second;
     }
   }
@@ -246,7 +257,8 @@ inline Vec3 face_velocity(const Surface& s, int f, const std::array<double, 3>& 
   const auto& fc = s.faces[static_cast<std::size_t>(f)];
   const int nid = s.dim == 1 ? 1 : s.dim;
   Vec3 v{0, 0, 0};
-  for (int k = 0; k < nid; ++k) v = v + bary[static_cast<std::size_t>(k)] * s.velocities[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])];
+  for (int k = 0; k < nid; ++k)
+    v = v + bary[static_cast<std::size_t>(k)] * s.velocities[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])];
   return v;
 }
 

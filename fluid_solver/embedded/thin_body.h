@@ -36,14 +36,17 @@ struct ThinSpot {
 };
 
 template <int DIM>
-std::vector<ThinSpot> find_thin_spots(const LevelSet<DIM>& centres, const std::vector<InterfaceSegment>& segments, double opposite_cos,
-                                      int reach = 1) {
+std::vector<ThinSpot> find_thin_spots(const LevelSet<DIM>& centres, const std::vector<InterfaceSegment>& segments,
+                                      double opposite_cos, int reach = 1) {
   std::vector<ThinSpot> spots;
   const Lattice<DIM>& C = centres.lattice;
   auto record = [&](std::size_t idx, const Vec3& n1, const Vec3& n2, const char* rule) {
     const auto I = C.ijk(idx);
     spots.push_back(ThinSpot{{I[0] - Grid<DIM>::offset(0), I[1] - Grid<DIM>::offset(1), I[2] - Grid<DIM>::offset(2)},
-                             C.point(I[0], I[1], I[2]), n1, n2, rule});
+                             C.point(I[0], I[1], I[2]),
+                             n1,
+                             n2,
+                             rule});
   };
   for (const auto& f : centres.band) {
     if (centres.phi[f.index] < 0) continue;  // F: a flow centre
@@ -60,8 +63,10 @@ std::vector<ThinSpot> find_thin_spots(const LevelSet<DIM>& centres, const std::v
           if (centres.phi[cidx] < 0) {
             if (dot(c->normal, f.normal) < opposite_cos) record(cidx, f.normal, c->normal, "T1");
           } else if (k == 1) {
-            const double along_f = dir * f.normal[static_cast<std::size_t>(d)], along_c = dir * c->normal[static_cast<std::size_t>(d)];
-            if (dot(c->normal, f.normal) < opposite_cos && along_f < 0 && along_c > 0) record(f.index, f.normal, c->normal, "T2");
+            const double along_f = dir * f.normal[static_cast<std::size_t>(d)],
+                         along_c = dir * c->normal[static_cast<std::size_t>(d)];
+            if (dot(c->normal, f.normal) < opposite_cos && along_f < 0 && along_c > 0)
+              record(f.index, f.normal, c->normal, "T2");
             break;  // a flow neighbour: the solver reads past it only through another flow cell
           } else {
             break;
@@ -84,9 +89,10 @@ std::vector<ThinSpot> find_thin_spots(const LevelSet<DIM>& centres, const std::v
 
 inline std::string describe_thin_spot(const ThinSpot& t) {
   std::ostringstream m;
-  m << "embedded geometry: body thinner than two cells near x = (" << t.x[0] << ", " << t.x[1] << ", " << t.x[2] << "), cell ("
-    << t.ijk[0] << ", " << t.ijk[1] << ", " << t.ijk[2] << "), rule " << t.rule << ": walls with opposite normals ("
-    << t.n1[0] << ", " << t.n1[1] << ", " << t.n1[2] << ") and (" << t.n2[0] << ", " << t.n2[1] << ", " << t.n2[2]
+  m << "embedded geometry: body thinner than two cells near x = (" << t.x[0] << ", " << t.x[1] << ", " << t.x[2]
+    << "), cell (" << t.ijk[0] << ", " << t.ijk[1] << ", " << t.ijk[2] << "), rule " << t.rule
+    << ": walls with opposite normals (" << t.n1[0] << ", " << t.n1[1] << ", " << t.n1[2] << ") and (" << t.n2[0]
+    << ", " << t.n2[1] << ", " << t.n2[2]
     << ") share its ghost cells; thin bodies need two-sided ghost states, which are not supported: refine the grid or "
        "thicken the body";
   return m.str();

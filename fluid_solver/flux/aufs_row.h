@@ -88,7 +88,7 @@ inline void aufs_row(int n, const double* const* left, const double* const* righ
       fm_out[d][f] = fm;
     }
     f_energy[f] = a * (0.5 * (pL[f] * unL + pR[f] * unR) + 0.5 * (dL * (h0 + 0.5 * kL) - dR * (h0 + 0.5 * kR))) +
-                       M * (w * Eu + pu * unu);
+                  M * (w * Eu + pu * unu);
   }
   (void)g;
 }

@@ -27,8 +27,8 @@ void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange
   }
   if (slip2 == 0.0) return;
   const double alpha_g = s.alpha0, alpha_p = 1.0 - s.alpha0;
-  const double beta = drag_beta(ex.drag_law, alpha_p, mg / alpha_g, std::sqrt(slip2), ex.particle_diameter,
-                                ex.gas_viscosity);
+  const double beta =
+      drag_beta(ex.drag_law, alpha_p, mg / alpha_g, std::sqrt(slip2), ex.particle_diameter, ex.gas_viscosity);
   const double decay = std::exp(-dt * beta * (1.0 / mg + 1.0 / mp));
   const double ke_p_old = kinetic_per_mass(s, 1, dim) * mp;
   for (int d = 0; d < dim; ++d) {

@@ -26,9 +26,9 @@ struct CellState2 {
 // solver's row loops over it vectorise (the instantaneous velocity relaxation, numerics.md 2.5(a),
 // lives in those loops too). A state whose equilibrium pressure is not admissible is left
 // unchanged (the admissibility check then reports it). Returns the pressure.
-[[gnu::always_inline]] inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1, const double ke0,
-                                    const double ke1, double& E0, double& E1, const eos::StiffenedGas& e0,
-                                    const eos::StiffenedGas& e1) {
+[[gnu::always_inline]] inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1,
+                                                           const double ke0, const double ke1, double& E0, double& E1,
+                                                           const eos::StiffenedGas& e0, const eos::StiffenedGas& e1) {
   const double g0 = e0.gamma, g1 = e1.gamma, pi0 = e0.pinf, pi1 = e1.pinf;
   const double A0 = m0 * (g0 - 1.0) / g0, A1 = m1 * (g1 - 1.0) / g1;
   const double a0 = E0 / m0 - ke0 - e0.q, a1 = E1 / m1 - ke1 - e1.q;  // e_k0 - q_k

@@ -44,9 +44,10 @@ int run_solid_coupled(const RunOptions& opt) {
     if (d.dt > 0) {
       const int n = std::max(1, static_cast<int>(std::ceil(d.dt / sim->stable_dt() - 1e-9)));
       if (n > scene.numerics.max_subcycles)
-        throw app::NumericalError(fmt::format("the coupled step {:.4g} s needs {} solid substeps, more than "
-                                              "solid.numerics.max_subcycles = {}",
-                                              d.dt, n, scene.numerics.max_subcycles));
+        throw app::NumericalError(
+            fmt::format("the coupled step {:.4g} s needs {} solid substeps, more than "
+                        "solid.numerics.max_subcycles = {}",
+                        d.dt, n, scene.numerics.max_subcycles));
       for (int k = 0; k < n; ++k) {
         if (k > 0 && apply_velocity) sim->set_face_normal_velocities(last.face_normal_velocity, last.face_wetted);
         sim->advance(d.dt / n);
@@ -64,8 +65,8 @@ int run_solid_coupled(const RunOptions& opt) {
       throw std::invalid_argument(
           fmt::format("InterfaceStates.count = {} but the solid has {} interface faces", st.count, faces.count));
     if (static_cast<int>(st.face_pressure.size()) != st.count)
-      throw std::invalid_argument(fmt::format("InterfaceStates.face_pressure: {} values for {} faces",
-                                              st.face_pressure.size(), st.count));
+      throw std::invalid_argument(
+          fmt::format("InterfaceStates.face_pressure: {} values for {} faces", st.face_pressure.size(), st.count));
     sim->set_face_pressures(st.face_pressure);
     apply_velocity = client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
     if (apply_velocity) sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);

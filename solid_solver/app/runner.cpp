@@ -87,8 +87,13 @@ int run_solid(const RunOptions& opt) {
   io::SnapshotSeries series(opt.out_dir, "solid");
   RunRecord rec;
   rec.start = sim->energy();
-  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, scene.numerics.dt_min,
-                              static_cast<double>(sim->mesh().num_elements), "Mzone-cycles/s", opt.quiet};
+  app::DriveOptions drive_opt{scene.output_times,
+                              scene.t_end,
+                              scene.max_steps,
+                              scene.numerics.dt_min,
+                              static_cast<double>(sim->mesh().num_elements),
+                              "Mzone-cycles/s",
+                              opt.quiet};
   const app::DriveResult res = app::drive(*sim, drive_opt, [&] {
     if (scene.write_snapshots) write_snapshot(series, *sim);
   });
@@ -104,13 +109,13 @@ int run_solid(const RunOptions& opt) {
   }
   if (code == 0) {
     const EnergyBudget e = sim->energy();
-    spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {:.3g} Mzone-cycles/s, energy balance error {:.3g} "
-                 "(relative), {} snapshot(s) in {}",
-                 sim->time(), sim->steps(), rec.wall,
-                 rec.wall > 0 ? 1e-6 * sim->steps() * sim->mesh().num_elements / rec.wall : 0.0,
-                 rec.start.total() != 0 ? (e.total() - rec.start.total() - e.boundary_work) / std::abs(rec.start.total())
-                                        : 0.0,
-                 series.count(), opt.out_dir.string());
+    spdlog::info(
+        "done: t = {:.6g} in {} steps, {:.2f} s wall, {:.3g} Mzone-cycles/s, energy balance error {:.3g} "
+        "(relative), {} snapshot(s) in {}",
+        sim->time(), sim->steps(), rec.wall,
+        rec.wall > 0 ? 1e-6 * sim->steps() * sim->mesh().num_elements / rec.wall : 0.0,
+        rec.start.total() != 0 ? (e.total() - rec.start.total() - e.boundary_work) / std::abs(rec.start.total()) : 0.0,
+        series.count(), opt.out_dir.string());
   }
   return code;
 }

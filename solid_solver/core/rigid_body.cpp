@@ -55,10 +55,9 @@ void angular_velocity(const RigidBody& rb, int dim, const M3& Q, const double* L
                c02 = I[1][0] * I[2][1] - I[1][1] * I[2][0];
   const double det = I[0][0] * c00 + I[0][1] * c01 + I[0][2] * c02;
   if (!(det > 0.0)) return;
-  const double inv[3][3] = {
-      {c00, I[0][2] * I[2][1] - I[0][1] * I[2][2], I[0][1] * I[1][2] - I[0][2] * I[1][1]},
-      {c01, I[0][0] * I[2][2] - I[0][2] * I[2][0], I[0][2] * I[1][0] - I[0][0] * I[1][2]},
-      {c02, I[0][1] * I[2][0] - I[0][0] * I[2][1], I[0][0] * I[1][1] - I[0][1] * I[1][0]}};
+  const double inv[3][3] = {{c00, I[0][2] * I[2][1] - I[0][1] * I[2][2], I[0][1] * I[1][2] - I[0][2] * I[1][1]},
+                            {c01, I[0][0] * I[2][2] - I[0][2] * I[2][0], I[0][2] * I[1][0] - I[0][0] * I[1][2]},
+                            {c02, I[0][1] * I[2][0] - I[0][0] * I[2][1], I[0][0] * I[1][1] - I[0][1] * I[1][0]}};
   for (int i = 0; i < 3; ++i) w[i] = (inv[i][0] * L[0] + inv[i][1] * L[1] + inv[i][2] * L[2]) / det;
 }
 
@@ -116,9 +115,10 @@ RigidBody make_rigid_body(const Mesh& m, int b, State& st, std::vector<int>& rig
       if (!(mk & (1u << d))) continue;
       const double val = st.bc_value[static_cast<std::size_t>(n) * D + d];
       if (rb.fixed[d] && std::abs(val - rb.fixed_value[d]) > 1e-12 * (std::abs(val) + std::abs(rb.fixed_value[d])))
-        throw std::runtime_error(fmt::format("rigid block '{}': its nodes have different prescribed velocities "
-                                             "in direction {} ({} and {} m/s)", m.block_names[b], "xyz"[d],
-                                             rb.fixed_value[d], val));
+        throw std::runtime_error(
+            fmt::format("rigid block '{}': its nodes have different prescribed velocities "
+                        "in direction {} ({} and {} m/s)",
+                        m.block_names[b], "xyz"[d], rb.fixed_value[d], val));
       rb.fixed[d] = true;
       rb.fixed_value[d] = val;
       rb.rotation_locked = true;
@@ -139,8 +139,7 @@ RigidBody make_rigid_body(const Mesh& m, int b, State& st, std::vector<int>& rig
   return rb;
 }
 
-void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke,
-                        double& wb) {
+void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke, double& wb) {
   const int D = m.dim;
   const int* off = m.node_corner_offset.data();
   const int* corners = m.node_corners.data();

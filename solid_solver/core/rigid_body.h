@@ -20,14 +20,14 @@ namespace cosim::solid {
 
 struct RigidBody {
   int block = -1;
-  std::vector<int> nodes;      // every node of the block's elements
-  std::vector<double> r0;      // body-frame node positions about the centre of mass (3 per node) [m]
-  double mass = 0.0;           // sum of the lumped masses of its nodes [kg]
-  double I0[3][3] = {};        // body-frame inertia tensor about the centre of mass [kg m^2]
+  std::vector<int> nodes;  // every node of the block's elements
+  std::vector<double> r0;  // body-frame node positions about the centre of mass (3 per node) [m]
+  double mass = 0.0;       // sum of the lumped masses of its nodes [kg]
+  double I0[3][3] = {};    // body-frame inertia tensor about the centre of mass [kg m^2]
   double Q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // orientation (body -> world)
-  double X[3] = {0, 0, 0};     // centre of mass at t^n [m]
-  double V[3] = {0, 0, 0};     // velocity at t^{n-1/2} [m/s]
-  double L[3] = {0, 0, 0};     // angular momentum about the centre of mass at t^{n-1/2} [kg m^2/s]
+  double X[3] = {0, 0, 0};                             // centre of mass at t^n [m]
+  double V[3] = {0, 0, 0};                             // velocity at t^{n-1/2} [m/s]
+  double L[3] = {0, 0, 0};                         // angular momentum about the centre of mass at t^{n-1/2} [kg m^2/s]
   std::array<bool, 3> fixed{false, false, false};  // prescribed translation components
   double fixed_value[3] = {0, 0, 0};               // their values [m/s]
   double fixed_ramp = 0.0;                         // linear ramp time of the prescribed values [s]

@@ -53,8 +53,8 @@ MaterialModel read_material(Node& b, bool rigid, bool& has_eos) {
   auto e = b.optional_child("eos");
   if (e) {
     known_keys(*e, {"type", "gamma", "bulk_modulus", "rho0", "c0", "s", "gamma0", "p_min"});
-    const std::string type = e->get<std::string>(
-        "type", lib ? "mie_gruneisen" : "", config::one_of({"ideal_gas", "linear_elastic", "mie_gruneisen"}));
+    const std::string type = e->get<std::string>("type", lib ? "mie_gruneisen" : "",
+                                                 config::one_of({"ideal_gas", "linear_elastic", "mie_gruneisen"}));
     if (type.empty()) e->fail("type", "one of ideal_gas, linear_elastic, mie_gruneisen");
     if (type == "ideal_gas") {
       m.eos = EosKind::IdealGas;
@@ -192,9 +192,7 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     if (f.is_relative() && !base_dir.empty()) f = std::filesystem::path(base_dir) / f;
     try {
       file_mesh = std::make_shared<Mesh>(read_gmsh(f.string()));
-    } catch (const MeshError& e) {
-      throw config::ConfigError(fmt::format("{}: {}", mesh.where("file"), e.what()));
-    }
+    } catch (const MeshError& e) { throw config::ConfigError(fmt::format("{}: {}", mesh.where("file"), e.what())); }
     s.mesh_file = f.string();
     s.dim = file_mesh->dim;
   } else {
@@ -257,8 +255,8 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
       block_of_group[it - names_in_file.begin()] = static_cast<int>(b);
     }
     for (std::size_t g = 0; g < block_of_group.size(); ++g)
-      if (block_of_group[g] < 0 && std::count(file_mesh->element_block.begin(), file_mesh->element_block.end(),
-                                              static_cast<int>(g)) > 0)
+      if (block_of_group[g] < 0 &&
+          std::count(file_mesh->element_block.begin(), file_mesh->element_block.end(), static_cast<int>(g)) > 0)
         sn.fail("blocks", fmt::format("a block for every element group of {}: group '{}' has none", s.mesh_file,
                                       file_mesh->block_names[g]));
     for (int& b : file_mesh->element_block) b = block_of_group[b];

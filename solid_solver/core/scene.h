@@ -16,13 +16,13 @@ namespace cosim::solid {
 struct BlockSpec {
   std::string name;
   MaterialModel material;
-  double energy = 0.0;                           // initial specific internal energy [J/kg]
+  double energy = 0.0;  // initial specific internal energy [J/kg]
   bool has_pressure = false;
-  double pressure = 0.0;                         // initial pressure [Pa] (sets the energy)
-  std::array<double, 3> velocity{0, 0, 0};       // initial velocity [m/s]
-  std::array<double, 3> angular_velocity{0, 0, 0};  // initial spin about the block's centre of mass [rad/s]
-  bool rigid = false;                            // rigid body: no stress, EOS or hourglass work
-  bool has_eos = true;                           // false: a rigid block given without an eos
+  double pressure = 0.0;                             // initial pressure [Pa] (sets the energy)
+  std::array<double, 3> velocity{0, 0, 0};           // initial velocity [m/s]
+  std::array<double, 3> angular_velocity{0, 0, 0};   // initial spin about the block's centre of mass [rad/s]
+  bool rigid = false;                                // rigid body: no stress, EOS or hourglass work
+  bool has_eos = true;                               // false: a rigid block given without an eos
   std::array<double, 6> deviator{0, 0, 0, 0, 0, 0};  // initial deviatoric stress (xx,yy,zz,xy,yz,zx) [Pa]
 };
 
@@ -49,15 +49,15 @@ struct DepositSpec {  // energy [J] added to the element nearest `point`, or spl
 };
 
 struct Numerics {
-  double cfl = 0.5;           // safety factor on the element stable time step
-  double q_quadratic = 1.5;   // C_q in q = rho L (C_q^2 L |div v| + C_l c) |div v| (compression only)
-  double q_linear = 0.06;     // C_l
-  double hourglass = 0.03;    // kappa in the FB viscous hourglass coefficient kappa rho c V^((D-1)/D)
-  double dt_growth = 1.2;     // largest ratio of successive time steps
-  double dt_initial = 0.0;    // [s] first time step (0: the stable step)
-  double dt_min = 0.0;        // [s] a step below this is a numerical failure
-  int max_subcycles = 1;      // coupled runs: up to this many solid steps per coupled cycle, the interface
-                              // pressure held (1: the solid's stable step limits the coupled step)
+  double cfl = 0.5;          // safety factor on the element stable time step
+  double q_quadratic = 1.5;  // C_q in q = rho L (C_q^2 L |div v| + C_l c) |div v| (compression only)
+  double q_linear = 0.06;    // C_l
+  double hourglass = 0.03;   // kappa in the FB viscous hourglass coefficient kappa rho c V^((D-1)/D)
+  double dt_growth = 1.2;    // largest ratio of successive time steps
+  double dt_initial = 0.0;   // [s] first time step (0: the stable step)
+  double dt_min = 0.0;       // [s] a step below this is a numerical failure
+  int max_subcycles = 1;     // coupled runs: up to this many solid steps per coupled cycle, the interface
+                             // pressure held (1: the solid's stable step limits the coupled step)
 };
 
 struct SolidScene {

@@ -35,8 +35,8 @@ Mesh build_mesh(const SolidScene& s) {
   finalize_mesh(m);
   for (std::size_t b = 0; b < s.blocks.size(); ++b)
     if (m.block_range[b][0] == m.block_range[b][1])
-      throw std::runtime_error(fmt::format("block '{}' has no elements (no element centroid lies in its regions)",
-                                           s.blocks[b].name));
+      throw std::runtime_error(
+          fmt::format("block '{}' has no elements (no element centroid lies in its regions)", s.blocks[b].name));
   return m;
 }
 
@@ -94,8 +94,10 @@ void Simulation::setup() {
       }
       const auto c = element_centroid(mesh_, st_.x, z);
       if (!(V > 0.0))
-        throw std::runtime_error(fmt::format("element {} of block '{}' near ({:.6g}, {:.6g}, {:.6g}) is inverted or "
-                                             "degenerate (volume {:.6g})", z, bs.name, c[0], c[1], c[2], V));
+        throw std::runtime_error(
+            fmt::format("element {} of block '{}' near ({:.6g}, {:.6g}, {:.6g}) is inverted or "
+                        "degenerate (volume {:.6g})",
+                        z, bs.name, c[0], c[1], c[2], V));
       st_.vol[z] = V;
       st_.emass[z] = rho * V;
       st_.ie[z] = e0 * rho * V;
@@ -113,14 +115,14 @@ void Simulation::setup() {
         for (int d = 0; d < D; ++d) r[d] = st_.x[static_cast<std::size_t>(cn[a]) * D + d] - cm[d];
         const double wxr[3] = {w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]};
         msum[cn[a]] += mc;
-        for (int d = 0; d < D; ++d)
-          vsum[static_cast<std::size_t>(cn[a]) * D + d] += mc * (bs.velocity[d] + wxr[d]);
+        for (int d = 0; d < D; ++d) vsum[static_cast<std::size_t>(cn[a]) * D + d] += mc * (bs.velocity[d] + wxr[d]);
       }
     }
   }
   for (int n = 0; n < nn; ++n) {
     st_.mass[n] = msum[n];
-    for (int d = 0; d < D; ++d) st_.v[static_cast<std::size_t>(n) * D + d] = vsum[static_cast<std::size_t>(n) * D + d] / msum[n];
+    for (int d = 0; d < D; ++d)
+      st_.v[static_cast<std::size_t>(n) * D + d] = vsum[static_cast<std::size_t>(n) * D + d] / msum[n];
   }
 
   // Energy deposits.
@@ -132,7 +134,10 @@ void Simulation::setup() {
         const auto c = element_centroid(mesh_, st_.x, z);
         double d2 = 0;
         for (int d = 0; d < D; ++d) d2 += (c[d] - dep.point[d]) * (c[d] - dep.point[d]);
-        if (d2 < bd) { bd = d2; best = z; }
+        if (d2 < bd) {
+          bd = d2;
+          best = z;
+        }
       }
       st_.ie[best] += dep.energy;
     } else {
@@ -142,7 +147,10 @@ void Simulation::setup() {
         const auto c = element_centroid(mesh_, st_.x, z);
         bool ok = true;
         for (int d = 0; d < D; ++d) ok = ok && c[d] >= dep.lower[d] && c[d] <= dep.upper[d];
-        if (ok) { in.push_back(z); mtot += st_.emass[z]; }
+        if (ok) {
+          in.push_back(z);
+          mtot += st_.emass[z];
+        }
       }
       if (in.empty()) throw std::runtime_error("an energy deposit box contains no element centroid");
       for (int z : in) st_.ie[z] += dep.energy * st_.emass[z] / mtot;
@@ -166,8 +174,10 @@ void Simulation::setup() {
       const auto fs = mesh_.face_sets.find(bc.set);
       if (fs != mesh_.face_sets.end()) axis = face_set_axis(mesh_, st_.x, fs->second);
       if (axis < 0)
-        throw std::runtime_error(fmt::format("symmetry set '{}' is not one plane normal to x, y or z (only "
-                                             "axis-aligned symmetry planes are supported)", bc.set));
+        throw std::runtime_error(
+            fmt::format("symmetry set '{}' is not one plane normal to x, y or z (only "
+                        "axis-aligned symmetry planes are supported)",
+                        bc.set));
     }
     for (int n : it->second) {
       for (int d = 0; d < D; ++d) {
@@ -175,7 +185,10 @@ void Simulation::setup() {
         double val = 0.0;
         if (bc.kind == BcKind::Fixed) on = true;
         else if (bc.kind == BcKind::Symmetry) on = d == axis;  // box sides are axis-aligned planes
-        else if (bc.component[d]) { on = true; val = bc.velocity[d]; }
+        else if (bc.component[d]) {
+          on = true;
+          val = bc.velocity[d];
+        }
         if (on) {
           st_.bc_mask[n] |= static_cast<std::uint8_t>(1u << d);
           st_.bc_value[static_cast<std::size_t>(n) * D + d] = val;
@@ -214,7 +227,8 @@ void Simulation::apply_boundary_conditions() {
     if (!(m & 7)) continue;
     const double r = st_.bc_ramp[n] > 0 ? std::min(1.0, t_ / st_.bc_ramp[n]) : 1.0;
     for (int d = 0; d < D; ++d)
-      if (m & (1u << d)) st_.v[static_cast<std::size_t>(n) * D + d] = r * st_.bc_value[static_cast<std::size_t>(n) * D + d];
+      if (m & (1u << d))
+        st_.v[static_cast<std::size_t>(n) * D + d] = r * st_.bc_value[static_cast<std::size_t>(n) * D + d];
   }
 }
 
@@ -261,8 +275,8 @@ const BoundaryFaces& Simulation::boundary_faces() {
 void Simulation::set_face_pressures(const std::vector<double>& p) {
   if (!faces_built_) boundary_faces();
   if (!p.empty() && static_cast<int>(p.size()) != faces_.count)
-    throw std::invalid_argument(fmt::format("set_face_pressures: {} values for {} exterior faces", p.size(),
-                                            faces_.count));
+    throw std::invalid_argument(
+        fmt::format("set_face_pressures: {} values for {} exterior faces", p.size(), faces_.count));
   face_p_ = p;
   if (p.empty())  // the loads of the scene (if any) are rebuilt every cycle
     for (int n : loaded_nodes_)
@@ -277,9 +291,10 @@ void Simulation::set_face_pressures(const std::vector<double>& p) {
 void Simulation::set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted) {
   if (!faces_built_) boundary_faces();
   if (u.size() != static_cast<std::size_t>(faces_.count) || wetted.size() != u.size())
-    throw std::invalid_argument(fmt::format("set_face_normal_velocities: {} velocities and {} flags for {} exterior "
-                                            "faces",
-                                            u.size(), wetted.size(), faces_.count));
+    throw std::invalid_argument(
+        fmt::format("set_face_normal_velocities: {} velocities and {} flags for {} exterior "
+                    "faces",
+                    u.size(), wetted.size(), faces_.count));
   const int D = mesh_.dim, k = faces_.nodes_per_face;
   // Per node, the area-weighted normal equations of "v . n_f = u_f on every wetted face f":
   // N = sum A n n^T, c = sum A u n.
@@ -390,11 +405,25 @@ void Simulation::nodal_update(double dt) {
 
 void Simulation::element_update(double dt) {
   const int D = mesh_.dim;
-  ElementPassArgs A{mesh_.conn.data(), st_.x.data(), st_.v.data(), st_.vbar.data(), st_.emass.data(),
-                    st_.vol.data(), st_.ie.data(), st_.p.data(), st_.q.data(), st_.c.data(), st_.s.data(),
-                    st_.eps_p.data(), st_.fc.data(), dt,
-                    scene_.numerics.q_quadratic * scene_.numerics.q_quadratic, scene_.numerics.q_linear,
-                    scene_.numerics.hourglass, 0.0, Strength{}};
+  ElementPassArgs A{mesh_.conn.data(),
+                    st_.x.data(),
+                    st_.v.data(),
+                    st_.vbar.data(),
+                    st_.emass.data(),
+                    st_.vol.data(),
+                    st_.ie.data(),
+                    st_.p.data(),
+                    st_.q.data(),
+                    st_.c.data(),
+                    st_.s.data(),
+                    st_.eps_p.data(),
+                    st_.fc.data(),
+                    dt,
+                    scene_.numerics.q_quadratic * scene_.numerics.q_quadratic,
+                    scene_.numerics.q_linear,
+                    scene_.numerics.hourglass,
+                    0.0,
+                    Strength{}};
   ElementPassResult R;
   R.ie_sum = rigid_ie_;
   for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
@@ -425,12 +454,14 @@ void Simulation::element_update(double dt) {
     const auto c = element_centroid(mesh_, st_.x, z);
     const auto& bn = mesh_.block_names[mesh_.element_block[z]];
     if (R.bad_kind == 1)
-      throw StateError(fmt::format("element {} of block '{}' inverted at t = {:.9g} (step {}), centroid ({:.6g}, "
-                                   "{:.6g}, {:.6g}), previous volume {:.6g}, pressure {:.6g} Pa",
-                                   z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.vol[z], st_.p[z]));
-    throw StateError(fmt::format("element {} of block '{}' has a non-finite state at t = {:.9g} (step {}), centroid "
-                                 "({:.6g}, {:.6g}, {:.6g}), energy {:.6g} J, pressure {:.6g} Pa",
-                                 z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.ie[z], st_.p[z]));
+      throw StateError(
+          fmt::format("element {} of block '{}' inverted at t = {:.9g} (step {}), centroid ({:.6g}, "
+                      "{:.6g}, {:.6g}), previous volume {:.6g}, pressure {:.6g} Pa",
+                      z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.vol[z], st_.p[z]));
+    throw StateError(
+        fmt::format("element {} of block '{}' has a non-finite state at t = {:.9g} (step {}), centroid "
+                    "({:.6g}, {:.6g}, {:.6g}), energy {:.6g} J, pressure {:.6g} Pa",
+                    z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.ie[z], st_.p[z]));
   }
   ie_sum_ = R.ie_sum;
   dt_elem_ = R.dt_min;

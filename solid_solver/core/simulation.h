@@ -94,7 +94,7 @@ class Simulation {
   };
   std::vector<InterfaceNode> iface_;
   std::vector<double> face_p_;  // coupler pressures per exterior face [Pa] (empty: none)
-  double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
+  double rigid_ie_ = 0.0;       // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
 };
 

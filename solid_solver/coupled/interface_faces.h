@@ -12,8 +12,8 @@
 namespace cosim::solid {
 
 struct InterfaceFaceMap {
-  std::vector<int> vertex_node;                  // mesh node of each interface vertex
-  std::vector<std::uint32_t> face_vertex;        // nodes_per_face interface vertices per face
+  std::vector<int> vertex_node;            // mesh node of each interface vertex
+  std::vector<std::uint32_t> face_vertex;  // nodes_per_face interface vertices per face
 };
 
 InterfaceFaceMap make_interface_face_map(const BoundaryFaces& bf);

@@ -46,10 +46,10 @@ struct ElementPassArgs {
 };
 
 struct ElementPassResult {
-  double dt_min = 1e300;    // stable step before the safety factor [s]
-  double ie_sum = 0.0;      // [J]
-  int bad = -1;             // first failed element, -1 if none
-  int bad_kind = 0;         // 1 inverted, 2 non-finite state
+  double dt_min = 1e300;  // stable step before the safety factor [s]
+  double ie_sum = 0.0;    // [J]
+  int bad = -1;           // first failed element, -1 if none
+  int bad_kind = 0;       // 1 inverted, 2 non-finite state
 };
 
 template <int D, class Eos, bool Strength>
@@ -81,7 +81,10 @@ void element_pass(const ElementPassArgs& A, const Eos& eos, int begin, int end, 
     const double V = element_b_matrix(x, B);
     if (!(V > 0.0)) {
 #pragma omp critical(solid_bad_element)
-      if (bad < 0 || z < bad) { bad = z; bad_kind = 1; }
+      if (bad < 0 || z < bad) {
+        bad = z;
+        bad_kind = 1;
+      }
       continue;
     }
     const double Vold = A.vol[z];
@@ -104,8 +107,8 @@ void element_pass(const ElementPassArgs& A, const Eos& eos, int begin, int end, 
       divv = L[0][0] + L[1][1] + L[2][2];
       double* sp = A.s + static_cast<std::ptrdiff_t>(z) * 6;
       for (int k = 0; k < 6; ++k) sz[k] = sp[k];
-      A.eps_p[z] += update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress,
-                                    A.strength.hardening, A.eps_p[z], sz);
+      A.eps_p[z] += update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress, A.strength.hardening,
+                                    A.eps_p[z], sz);
       for (int k = 0; k < 6; ++k) sp[k] = sz[k];
     } else if (dt > 0.0) {
       divv = (V - Vold) / (dt * 0.5 * (V + Vold));
@@ -125,7 +128,10 @@ void element_pass(const ElementPassArgs& A, const Eos& eos, int begin, int end, 
     if constexpr (Strength) c2 += 4.0 * A.strength.shear_modulus / (3.0 * rho);
     if (!(c2 >= 0.0) || !std::isfinite(P) || !std::isfinite(IE)) {
 #pragma omp critical(solid_bad_element)
-      if (bad < 0 || z < bad) { bad = z; bad_kind = 2; }
+      if (bad < 0 || z < bad) {
+        bad = z;
+        bad_kind = 2;
+      }
       continue;
     }
     const double cs = std::sqrt(c2);

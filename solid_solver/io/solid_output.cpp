@@ -44,10 +44,7 @@ void write_snapshot(io::SnapshotSeries& series, const Simulation& sim) {
 }
 
 nlohmann::json energy_json(const EnergyBudget& e) {
-  return {{"internal", e.internal},
-          {"kinetic", e.kinetic},
-          {"total", e.total()},
-          {"boundary_work", e.boundary_work}};
+  return {{"internal", e.internal}, {"kinetic", e.kinetic}, {"total", e.total()}, {"boundary_work", e.boundary_work}};
 }
 
 }  // namespace cosim::solid

@@ -63,9 +63,9 @@ struct MieGruneisenEos {
 
 struct Strength {
   bool enabled = false;
-  double shear_modulus = 0.0;   // G [Pa]
-  double yield_stress = 0.0;    // Y0 [Pa]
-  double hardening = 0.0;       // H [Pa]: Y = Y0 + H eps_p
+  double shear_modulus = 0.0;  // G [Pa]
+  double yield_stress = 0.0;   // Y0 [Pa]
+  double hardening = 0.0;      // H [Pa]: Y = Y0 + H eps_p
 };
 
 struct MaterialModel {

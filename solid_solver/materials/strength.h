@@ -66,8 +66,7 @@ inline double update_deviator(const double (&L)[3][3], double dt, double G, doub
 }
 
 inline double von_mises(const double* s) {
-  return std::sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
-                          2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+  return std::sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
 }
 
 }  // namespace cosim::solid

@@ -17,9 +17,8 @@ std::vector<FaceRef> all_element_faces(const Mesh& m) {
   faces.reserve(static_cast<std::size_t>(m.num_elements) * nf);
   for (int e = 0; e < m.num_elements; ++e)
     for (int f = 0; f < nf; ++f) faces.push_back({face_key(m.dim, element_face_nodes(m, e, f)), e, f});
-  std::sort(faces.begin(), faces.end(), [](const FaceRef& a, const FaceRef& b) {
-    return a.key != b.key ? a.key < b.key : a.element < b.element;
-  });
+  std::sort(faces.begin(), faces.end(),
+            [](const FaceRef& a, const FaceRef& b) { return a.key != b.key ? a.key < b.key : a.element < b.element; });
   return faces;
 }
 

@@ -25,7 +25,8 @@ struct Lines {
   }
   // The next line as a stream; `at` gets its index.
   std::istringstream take(std::size_t& at, const char* what) {
-    if (next >= text.size()) fail(text.empty() ? 0 : text.size() - 1, fmt::format("unexpected end of file, expected {}", what));
+    if (next >= text.size())
+      fail(text.empty() ? 0 : text.size() - 1, fmt::format("unexpected end of file, expected {}", what));
     at = next;
     return std::istringstream(text[next++]);
   }
@@ -145,7 +146,7 @@ Mesh read_gmsh(const std::string& path) {
       L.text.push_back(s);
     }
   }
-  std::map<std::pair<int, int>, std::string> phys_names;       // (dim, tag) -> name
+  std::map<std::pair<int, int>, std::string> phys_names;        // (dim, tag) -> name
   std::map<std::pair<int, int>, std::vector<int>> entity_phys;  // (dim, entity) -> physical tags
   std::vector<double> coords;                                   // 3 per node
   std::vector<std::size_t> node_line;
@@ -165,8 +166,10 @@ Mesh read_gmsh(const std::string& path) {
       const int file_type = field<int>(is, L, ln, "the file type (0 = ASCII)");
       if (version != "4.1")
         L.fail(ln, fmt::format("MSH format version {} is not supported: expected 4.1 (gmsh -format msh41, or "
-                               "Mesh.MshFileVersion = 4.1)", version));
-      if (file_type != 0) L.fail(ln, "binary MSH files are not supported: expected ASCII (file type 0; Mesh.Binary = 0)");
+                               "Mesh.MshFileVersion = 4.1)",
+                               version));
+      if (file_type != 0)
+        L.fail(ln, "binary MSH files are not supported: expected ASCII (file type 0; Mesh.Binary = 0)");
       expect_end(L, "MeshFormat");
       have_format = true;
     } else if (h == "$PhysicalNames") {
@@ -248,7 +251,8 @@ Mesh read_gmsh(const std::string& path) {
           if (nn < 0)
             L.fail(ln, fmt::format("element {}: element type {} ({}) is not supported: expected 4-node "
                                    "quadrangles (type 3) or 8-node hexahedra (type 5), with 2-node lines (type 1) "
-                                   "as 2D boundary elements", r.tag, type, type_name(type)));
+                                   "as 2D boundary elements",
+                                   r.tag, type, type_name(type)));
           for (int a = 0; a < nn; ++a) r.nodes[a] = field<long>(es, L, ln, "the element's node tags");
           elems.push_back(r);
         }
@@ -281,7 +285,8 @@ Mesh read_gmsh(const std::string& path) {
   m.num_nodes = static_cast<int>(node_index.size());
   m.x0.resize(static_cast<std::size_t>(m.num_nodes) * dim);
   for (int n = 0; n < m.num_nodes; ++n)
-    for (int d = 0; d < dim; ++d) m.x0[static_cast<std::size_t>(n) * dim + d] = coords[3 * static_cast<std::size_t>(n) + d];
+    for (int d = 0; d < dim; ++d)
+      m.x0[static_cast<std::size_t>(n) * dim + d] = coords[3 * static_cast<std::size_t>(n) + d];
   if (dim == 2) {
     double zmin = 1e300, zmax = -1e300, ext = 0;
     for (int n = 0; n < m.num_nodes; ++n) {
@@ -290,8 +295,8 @@ Mesh read_gmsh(const std::string& path) {
       ext = std::max({ext, std::abs(coords[3 * n]), std::abs(coords[3 * n + 1])});
     }
     if (zmax - zmin > 1e-9 * std::max(ext, 1e-300))
-      throw MeshError(fmt::format("{}: a 2D mesh (quadrangles) must lie in a plane z = const (z from {} to {})", path,
-                                  zmin, zmax));
+      throw MeshError(
+          fmt::format("{}: a 2D mesh (quadrangles) must lie in a plane z = const (z from {} to {})", path, zmin, zmax));
   }
   auto group_name = [&](int d, int tag) {
     auto it = phys_names.find({d, tag});
@@ -323,13 +328,14 @@ Mesh read_gmsh(const std::string& path) {
       const auto it = entity_phys.find({dim, r.entity_tag});
       const int ng = it == entity_phys.end() ? 0 : static_cast<int>(it->second.size());
       if (ng == 0)
-        L.fail(r.line, fmt::format("element {} ({} {}) belongs to no physical group: name the element blocks "
-                                   "with physical groups (Physical {})", r.tag, dim == 2 ? "surface" : "volume",
-                                   r.entity_tag, dim == 2 ? "Surface" : "Volume"));
+        L.fail(r.line,
+               fmt::format("element {} ({} {}) belongs to no physical group: name the element blocks "
+                           "with physical groups (Physical {})",
+                           r.tag, dim == 2 ? "surface" : "volume", r.entity_tag, dim == 2 ? "Surface" : "Volume"));
       if (ng > 1)
         L.fail(r.line, fmt::format("element {} belongs to the physical groups '{}' and '{}': an element belongs to "
-                                   "exactly one block", r.tag, group_name(dim, it->second[0]),
-                                   group_name(dim, it->second[1])));
+                                   "exactly one block",
+                                   r.tag, group_name(dim, it->second[0]), group_name(dim, it->second[1])));
       for (int a = 0; a < m.npe; ++a) m.conn.push_back(node_of(r, a));
       m.element_block.push_back(block_of_tag.at(it->second[0]));
       elem_line.push_back(r.line);
@@ -339,9 +345,9 @@ Mesh read_gmsh(const std::string& path) {
     } else if (r.type == 15 || (dim == 3 && r.type == 1)) {
       continue;  // points, and curve segments of a 3D mesh
     } else {
-      L.fail(r.line, fmt::format("element {}: a {} (type {}) on a {}-dimensional entity does not fit a {}D mesh of {}",
-                                 r.tag, type_name(r.type), r.type, r.entity_dim, dim,
-                                 dim == 2 ? "quadrangles" : "hexahedra"));
+      L.fail(r.line,
+             fmt::format("element {}: a {} (type {}) on a {}-dimensional entity does not fit a {}D mesh of {}", r.tag,
+                         type_name(r.type), r.type, r.entity_dim, dim, dim == 2 ? "quadrangles" : "hexahedra"));
     }
   }
   m.num_elements = static_cast<int>(m.element_block.size());
@@ -349,8 +355,8 @@ Mesh read_gmsh(const std::string& path) {
   std::string what;
   const int bad = find_bad_element(m, what);
   if (bad >= 0)
-    L.fail(elem_line[bad], fmt::format("element {} of group '{}': {}", elem_tag[bad],
-                                       m.block_names[m.element_block[bad]], what));
+    L.fail(elem_line[bad],
+           fmt::format("element {} of group '{}': {}", elem_tag[bad], m.block_names[m.element_block[bad]], what));
 
   // Boundary sets: each boundary element must be the face of exactly one element.
   const auto all = all_element_faces(m);
@@ -360,16 +366,16 @@ Mesh read_gmsh(const std::string& path) {
     std::array<int, 4> nodes{-1, -1, -1, -1};
     for (int a = 0; a < m.face_nodes(); ++a) nodes[a] = node_of(*r, a);
     const auto key = face_key(dim, nodes);
-    auto lo = std::lower_bound(all.begin(), all.end(), key, [](const FaceRef& f, const std::array<int, 4>& k) {
-      return f.key < k;
-    });
+    auto lo = std::lower_bound(all.begin(), all.end(), key,
+                               [](const FaceRef& f, const std::array<int, 4>& k) { return f.key < k; });
     const std::string gname = group_name(dim - 1, it->second[0]);
     if (lo == all.end() || lo->key != key)
       L.fail(r->line, fmt::format("boundary element {} of group '{}' is not a face of any {}", r->tag, gname,
                                   dim == 2 ? "quadrangle" : "hexahedron"));
     if (lo + 1 != all.end() && (lo + 1)->key == key)
       L.fail(r->line, fmt::format("boundary element {} of group '{}' is an interior face (between two elements); "
-                                  "boundary groups must lie on the exterior", r->tag, gname));
+                                  "boundary groups must lie on the exterior",
+                                  r->tag, gname));
     const BoundaryFace bf{element_face_nodes(m, lo->element, lo->local), lo->element};
     for (int t : it->second) {
       const std::string name = group_name(dim - 1, t);

@@ -67,8 +67,8 @@ Mesh make_box_mesh(int dim, const std::array<int, 3>& cells, const std::array<do
   // 2D edges: y- (0,1), x+ (1,2), y+ (2,3), x- (3,0).
   // 3D faces: x- (0,4,7,3), x+ (1,2,6,5), y- (0,1,5,4), y+ (3,7,6,2), z- (0,3,2,1), z+ (4,5,6,7).
   static const int edge2[3][2][2] = {{{3, 0}, {1, 2}}, {{0, 1}, {2, 3}}, {{0, 0}, {0, 0}}};
-  static const int face3[3][2][4] = {{{0, 4, 7, 3}, {1, 2, 6, 5}}, {{0, 1, 5, 4}, {3, 7, 6, 2}},
-                                     {{0, 3, 2, 1}, {4, 5, 6, 7}}};
+  static const int face3[3][2][4] = {
+      {{0, 4, 7, 3}, {1, 2, 6, 5}}, {{0, 1, 5, 4}, {3, 7, 6, 2}}, {{0, 3, 2, 1}, {4, 5, 6, 7}}};
   for (int d = 0; d < dim; ++d)
     for (int side = 0; side < 2; ++side) {
       auto& set = m.face_sets[kSide[d][side]];
@@ -98,8 +98,7 @@ void finalize_mesh(Mesh& m) {
   const int nb = static_cast<int>(m.block_names.size());
   std::vector<int> order(ne);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return m.element_block[a] < m.element_block[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return m.element_block[a] < m.element_block[b]; });
   std::vector<int> new_of_old(ne);
   std::vector<int> conn(m.conn.size()), blk(ne);
   for (int i = 0; i < ne; ++i) {

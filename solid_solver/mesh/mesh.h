@@ -17,11 +17,11 @@ struct BoundaryFace {
 
 struct Mesh {
   int dim = 3;
-  int npe = 8;                          // nodes per element: 4 (quad) or 8 (hex)
+  int npe = 8;  // nodes per element: 4 (quad) or 8 (hex)
   int num_nodes = 0, num_elements = 0;
-  std::vector<double> x0;               // initial coordinates, dim per node, interleaved [m]
-  std::vector<int> conn;                // npe node ids per element (VTK order)
-  std::vector<int> element_block;       // block index of each element
+  std::vector<double> x0;          // initial coordinates, dim per node, interleaved [m]
+  std::vector<int> conn;           // npe node ids per element (VTK order)
+  std::vector<int> element_block;  // block index of each element
   std::vector<std::string> block_names;
   std::vector<std::array<int, 2>> block_range;  // [begin, end) element range of each block
   std::map<std::string, std::vector<int>> node_sets;

@@ -26,9 +26,7 @@ const Material kWater{4.4, 6.0e8};
 
 // Tolerance for a value printed with `decimals` digits after the point: half a unit of the last
 // digit (slightly widened) or 2e-5 relative, whichever is larger.
-double table_tol(double ref, int decimals) {
-  return std::max(0.51 * std::pow(10.0, -decimals), 2e-5 * std::abs(ref));
-}
+double table_tol(double ref, int decimals) { return std::max(0.51 * std::pow(10.0, -decimals), 2e-5 * std::abs(ref)); }
 
 struct ToroCase {
   const char* name;
@@ -53,12 +51,8 @@ const ToroCase kToro[] = {
 
 // Specific enthalpy of the stiffened gas, h = gamma (p + pinf) / ((gamma - 1) rho)
 // (numerics.md 7.2).
-double enthalpy(double rho, double p, const Material& m) {
-  return m.gamma * (p + m.pinf) / ((m.gamma - 1.0) * rho);
-}
-double sound_speed(double rho, double p, const Material& m) {
-  return std::sqrt(m.gamma * (p + m.pinf) / rho);
-}
+double enthalpy(double rho, double p, const Material& m) { return m.gamma * (p + m.pinf) / ((m.gamma - 1.0) * rho); }
+double sound_speed(double rho, double p, const Material& m) { return std::sqrt(m.gamma * (p + m.pinf) / rho); }
 
 // Checks that the wave of side `side` (-1 left, +1 right) connects the initial state to the star
 // state: Rankine-Hugoniot for a shock, isentrope + Riemann invariant for a rarefaction.
@@ -117,8 +111,7 @@ void check_mirror(const Primitive& L, const Material& mL, const Primitive& R, co
   EXPECT_NEAR(b.right_head(), -a.left_head(), 1e-12 * us);
   // Sample on a grid of xi spanning all the waves (points at exact wave positions skipped).
   const double span = 1.5 * std::max(std::abs(a.left_head()), std::abs(a.right_head()));
-  const std::vector<double> waves = {a.left_head(), a.left_tail(), a.contact(), a.right_tail(),
-                                     a.right_head()};
+  const std::vector<double> waves = {a.left_head(), a.left_tail(), a.contact(), a.right_tail(), a.right_head()};
   for (int i = 0; i <= 400; ++i) {
     const double xi = -span + 2.0 * span * (i + 0.31) / 400.0;
     bool near_wave = false;
@@ -356,8 +349,7 @@ TEST(ExactRiemann, InvalidInputThrows) {
   EXPECT_THROW(solve_star({1, nan, 1}, kAir, ok, kAir), std::runtime_error);
   EXPECT_THROW(RiemannSolution(ok, kAir, {1, 0, 0}, kAir), std::runtime_error);
   // Cavitation of a stiffened gas is not supported.
-  EXPECT_THROW(solve_star({1000, -5000, 1e5}, kWater, {1000, 5000, 1e5}, kWater),
-               std::runtime_error);
+  EXPECT_THROW(solve_star({1000, -5000, 1e5}, kWater, {1000, 5000, 1e5}, kWater), std::runtime_error);
   // Water in tension is fine as long as p + pinf > 0 (and the air does not cavitate).
   EXPECT_NO_THROW(solve_star({1000, 0, -5e8}, kWater, {1.2, 0, 1e5}, kAir));
   EXPECT_THROW(solve_star({1000, 0, -5e8}, kWater, {1, 0, 1}, kAir), std::runtime_error);

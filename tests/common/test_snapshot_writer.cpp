@@ -39,8 +39,8 @@ class IoTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           fmt::format("cosim_io_{}_{}_{}", info->test_suite_name(), info->name(), ::getpid());
+    dir_ =
+        fs::temp_directory_path() / fmt::format("cosim_io_{}_{}_{}", info->test_suite_name(), info->name(), ::getpid());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -267,8 +267,8 @@ TEST_F(SnapshotSeriesTest, Uniform1D) {
   const UniformGrid g{1, {8, 0, 0}, {-1.0, 0.0, 0.0}, {0.25, 0.0, 0.0}};
   const auto rho = iota_values(8, 1.0);
   const auto phi = iota_values(9, 100.0);
-  const fs::path h5_path = series.write(0.5, 10, g, {{"density", rho.data(), 1, Center::Cell},
-                                                     {"potential", phi.data(), 1, Center::Node}});
+  const fs::path h5_path =
+      series.write(0.5, 10, g, {{"density", rho.data(), 1, Center::Cell}, {"potential", phi.data(), 1, Center::Node}});
   EXPECT_EQ(h5_path, dir_ / "line_000000.h5");
 
   const Hdf5File h5(h5_path, Hdf5File::Mode::ReadOnly);
@@ -301,9 +301,10 @@ TEST_F(SnapshotSeriesTest, Uniform2DStoresVectorsWithThreeComponents) {
   const auto rho = iota_values(12, 0.0);
   const auto vel = vec2_values(12);
   const auto node_vel = vec2_values(20);
-  const fs::path h5_path = series.write(1.0, 3, g, {{"rho", rho.data(), 1, Center::Cell},
-                                                    {"velocity", vel.data(), 2, Center::Cell},
-                                                    {"velocity", node_vel.data(), 2, Center::Node}});
+  const fs::path h5_path = series.write(1.0, 3, g,
+                                        {{"rho", rho.data(), 1, Center::Cell},
+                                         {"velocity", vel.data(), 2, Center::Cell},
+                                         {"velocity", node_vel.data(), 2, Center::Node}});
   const Hdf5File h5(h5_path, Hdf5File::Mode::ReadOnly);
   EXPECT_EQ(h5.dataset_shape("/cell/rho"), (Hdf5Shape{3, 4}));
   EXPECT_EQ(h5.read_doubles("/cell/rho"), rho);
@@ -326,10 +327,11 @@ TEST_F(SnapshotSeriesTest, Uniform3D) {
   const auto vel = iota_values(24 * 3, 0.0);
   const auto stress = iota_values(24 * 6, 0.0);
   const auto tnode = iota_values(60, 0.0);
-  const fs::path h5_path = series.write(2.0, 7, g, {{"energy", e.data(), 1, Center::Cell},
-                                                    {"velocity", vel.data(), 3, Center::Cell},
-                                                    {"stress", stress.data(), 6, Center::Cell},
-                                                    {"temperature", tnode.data(), 1, Center::Node}});
+  const fs::path h5_path = series.write(2.0, 7, g,
+                                        {{"energy", e.data(), 1, Center::Cell},
+                                         {"velocity", vel.data(), 3, Center::Cell},
+                                         {"stress", stress.data(), 6, Center::Cell},
+                                         {"temperature", tnode.data(), 1, Center::Node}});
   const Hdf5File h5(h5_path, Hdf5File::Mode::ReadOnly);
   expect_root_attributes(h5, 2.0, 7);
   EXPECT_EQ(h5.dataset_shape("/cell/energy"), (Hdf5Shape{4, 3, 2}));
@@ -398,8 +400,8 @@ TEST_F(SnapshotSeriesTest, Unstructured3DHexahedron) {
   const std::vector<double> rho{3.0};
   const auto u = iota_values(24, 0.0);
   const UnstructuredGrid g{3, coords.data(), 8, conn.data(), 1, 8};
-  const fs::path h5_path = series.write(4.0, 9, g, {{"rho", rho.data(), 1, Center::Cell},
-                                                    {"u", u.data(), 3, Center::Node}});
+  const fs::path h5_path =
+      series.write(4.0, 9, g, {{"rho", rho.data(), 1, Center::Cell}, {"u", u.data(), 3, Center::Node}});
   const Hdf5File h5(h5_path, Hdf5File::Mode::ReadOnly);
   EXPECT_EQ(h5.read_string_attribute("/grid", "cell_type"), "hexahedron");
   EXPECT_EQ(h5.read_int64_attribute("/grid", "dim"), std::vector<std::int64_t>{3});
@@ -446,8 +448,8 @@ TEST_F(SnapshotSeriesTest, XdmfListsEverySnapshotWithItsTime) {
   EXPECT_EQ(check_xml_nesting(xmf), "");
   check_xdmf_with_python(series.xdmf_path(), times.size());
   EXPECT_FALSE(any_tmp_file(dir_));
-  EXPECT_EQ(files_in(dir_), (std::vector<std::string>{"run.xmf", "run_000000.h5", "run_000001.h5",
-                                                      "run_000002.h5", "run_000003.h5"}));
+  EXPECT_EQ(files_in(dir_),
+            (std::vector<std::string>{"run.xmf", "run_000000.h5", "run_000001.h5", "run_000002.h5", "run_000003.h5"}));
 }
 
 // A second, shorter run into the same directory replaces the first run's series: no snapshot of the

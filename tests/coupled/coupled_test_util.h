@@ -20,7 +20,9 @@ namespace cosim::test {
 namespace fs = std::filesystem;
 
 inline fs::path bin(const std::string& exe) { return fs::path(COSIM_BINARY_DIR) / "bin" / exe; }
-inline fs::path scene_file(const std::string& name) { return fs::path(COSIM_SOURCE_DIR) / "configs" / (name + ".yaml"); }
+inline fs::path scene_file(const std::string& name) {
+  return fs::path(COSIM_SOURCE_DIR) / "configs" / (name + ".yaml");
+}
 
 inline std::string read_text(const fs::path& p) {
   std::ifstream in(p);
@@ -29,9 +31,7 @@ inline std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-inline fs::path run_dir(const std::string& name) {
-  return cosim::test::scratch_path("coupled_" + name);
-}
+inline fs::path run_dir(const std::string& name) { return cosim::test::scratch_path("coupled_" + name); }
 
 // `cosim run SCENE --out DIR --quiet ARGS`; returns the exit code (stdout and stderr in DIR.log).
 inline int cosim_run(const fs::path& scene, const fs::path& dir, const std::string& args = "") {
@@ -44,7 +44,8 @@ inline int cosim_run(const fs::path& scene, const fs::path& dir, const std::stri
 // Everything a failed run left: the launcher's output and the three logs.
 inline std::string run_logs(const fs::path& dir) {
   std::string s = read_text(fs::path(dir.string() + ".log"));
-  for (const char* p : {"coupler.log", "fluid.log", "solid.log"}) s += "\n--- " + std::string(p) + ":\n" + read_text(dir / p);
+  for (const char* p : {"coupler.log", "fluid.log", "solid.log"})
+    s += "\n--- " + std::string(p) + ":\n" + read_text(dir / p);
   return s;
 }
 

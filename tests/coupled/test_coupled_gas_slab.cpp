@@ -27,13 +27,14 @@ Ends euler_reference(double ratio) {
   const fs::path dir = run_dir("slab_reference_" + std::to_string(static_cast<int>(1000 * ratio)));
   fs::create_directories(dir);
   const fs::path scene = dir / "scene.yaml";
-  std::ofstream(scene) << "name: slab_reference\nfluid:\n  mesh: {cells: [4000], lower: [-2.0], upper: [2.0]}\n"
-                          "  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n"
-                          "  time: {end: 0.02, cfl: 0.5}\n  boundaries: {x_lower: wall, x_upper: wall}\n"
-                          "  initial:\n    state: {rho: 1.0, velocity: [0.0], p: 1.0e5}\n    regions:\n"
-                          "      - box: {lower: [-2.0], upper: [-1.0]}\n        state: {rho: 1.0, velocity: [0.0], p: 2.0e5}\n"
-                          "      - box: {lower: [-1.0], upper: [0.0]}\n        state: {rho: "
-                       << ratio << ", velocity: [0.0], p: 1.5e5}\n  output: {interval: 0.02}\n";
+  std::ofstream(scene)
+      << "name: slab_reference\nfluid:\n  mesh: {cells: [4000], lower: [-2.0], upper: [2.0]}\n"
+         "  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n"
+         "  time: {end: 0.02, cfl: 0.5}\n  boundaries: {x_lower: wall, x_upper: wall}\n"
+         "  initial:\n    state: {rho: 1.0, velocity: [0.0], p: 1.0e5}\n    regions:\n"
+         "      - box: {lower: [-2.0], upper: [-1.0]}\n        state: {rho: 1.0, velocity: [0.0], p: 2.0e5}\n"
+         "      - box: {lower: [-1.0], upper: [0.0]}\n        state: {rho: "
+      << ratio << ", velocity: [0.0], p: 1.5e5}\n  output: {interval: 0.02}\n";
   const std::string cmd = bin("fluid_solver").string() + " " + scene.string() + " --out " + (dir / "out").string() +
                           " --quiet > " + (dir / "log").string() + " 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "log");
@@ -52,7 +53,8 @@ Ends euler_reference(double ratio) {
 // The slab's ends in the coupler's last interface snapshot (area-weighted centres of its -x and +x faces).
 Ends coupled_ends(const fs::path& run) {
   fs::path last;
-  for (int i = 0; fs::exists(run / "coupler" / ("interface_" + std::string(i < 10 ? "00000" : "0000") + std::to_string(i) + ".h5"));
+  for (int i = 0; fs::exists(run / "coupler" /
+                             ("interface_" + std::string(i < 10 ? "00000" : "0000") + std::to_string(i) + ".h5"));
        ++i)
     last = run / "coupler" / ("interface_" + std::string(i < 10 ? "00000" : "0000") + std::to_string(i) + ".h5");
   io::Hdf5File h(last, io::Hdf5File::Mode::ReadOnly);
@@ -73,8 +75,8 @@ Ends coupled_ends(const fs::path& run) {
 TEST(CoupledGasSlab, EndsFollowTheEulerianContactsForEachInterfaceCondition) {
   for (double ratio : {0.01, 0.1, 10.0, 100.0}) {
     const Ends ref = euler_reference(ratio);
-    std::printf("[ measured ] slab/gas density ratio %g: Eulerian reference (4000 cells) ends at %.4f and %.4f m\n", ratio,
-                ref.left, ref.right);
+    std::printf("[ measured ] slab/gas density ratio %g: Eulerian reference (4000 cells) ends at %.4f and %.4f m\n",
+                ratio, ref.left, ref.right);
     for (const char* mode : {"standard", "characteristic", "impedance"}) {
       if (ratio < 1 && std::string(mode) == "standard") continue;  // blows up (the stability map)
       const fs::path dir = run_dir(std::string("slab_") + mode + "_" + std::to_string(static_cast<int>(1000 * ratio)));

@@ -45,7 +45,8 @@ struct Trajectory {
 const Trajectory& conforming_run() {
   static Trajectory tr = [] {
     Trajectory r;
-    solid::SolidScene s = solid::load_solid_scene(scene_file("solid_piston_1d").string(), {"solid.output.snapshots=false"});
+    solid::SolidScene s =
+        solid::load_solid_scene(scene_file("solid_piston_1d").string(), {"solid.output.snapshots=false"});
     solid::Simulation sim(s);
     const double x0 = sim.rigid_bodies().at(0).X[0];
     r.x.push_back(0.0);
@@ -98,9 +99,10 @@ const fs::path& run_once(const std::string& scene, const std::string& args = "")
 }
 
 void print(const char* what, const Deviation& d) {
-  std::printf("[ measured ] %s: max deviation %.2f%% from the ODE, %.2f%% from the ODE with gas inertia, %.2f%% from "
-              "the conforming run (of the ODE's peak-to-peak amplitude)\n",
-              what, 100 * d.plain, 100 * d.inertia, 100 * d.conforming);
+  std::printf(
+      "[ measured ] %s: max deviation %.2f%% from the ODE, %.2f%% from the ODE with gas inertia, %.2f%% from "
+      "the conforming run (of the ODE's peak-to-peak amplitude)\n",
+      what, 100 * d.plain, 100 * d.inertia, 100 * d.conforming);
 }
 
 }  // namespace
@@ -130,9 +132,9 @@ TEST(CoupledPiston, HeavyPiston2DFollowsTheOdeAndTheConformingRun) {
 TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
   const std::string coarse = " --set fluid.mesh.cells=[40,8]";
   const fs::path& cpp = run_once("piston_2d", coarse);
-  const fs::path& py = run_once("piston_2d", coarse + " --solid-exe '/usr/bin/python3 " +
-                                                  (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string() +
-                                                  "'");
+  const fs::path& py =
+      run_once("piston_2d", coarse + " --solid-exe '/usr/bin/python3 " +
+                                (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string() + "'");
   const History a = read_history(cpp), b = read_history(py);
   ASSERT_GT(b.size(), 1000u);
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
@@ -170,9 +172,10 @@ TEST(CoupledPiston, LightPistonSmoothWithImpedanceConditionsOnly) {
   const int rc = cosim_run(scene_file("piston_light_2d"), std_dir, "--set coupling.mode=standard");
   const History hs = read_history(std_dir);
   const double tv_std = relative_total_variation(hs.vx);
-  std::printf("[ measured ] light piston: impedance: %zu cycles, velocity TV/range %.1f; standard: exit %d after %zu "
-              "cycles, TV/range %.1f\n",
-              hi.size(), tv_imp, rc, hs.size(), tv_std);
+  std::printf(
+      "[ measured ] light piston: impedance: %zu cycles, velocity TV/range %.1f; standard: exit %d after %zu "
+      "cycles, TV/range %.1f\n",
+      hi.size(), tv_imp, rc, hs.size(), tv_std);
   EXPECT_LT(tv_imp, 20.0);
   EXPECT_TRUE(rc != 0 || tv_std > 3 * tv_imp) << run_logs(std_dir);
   if (rc != 0) {  // a clean stop that names the failing solver
@@ -225,15 +228,17 @@ TEST(CoupledPiston, PipelinedCycleMatchesTheSequentialOne) {
   ASSERT_GT(b.size(), 1000u);
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
   const auto [worst, travel] = trajectory_difference(a, b);
-  const std::string fluid_pip = read_text(pip / "fluid" / "summary.json"), fluid_seq = read_text(seq / "fluid" / "summary.json");
+  const std::string fluid_pip = read_text(pip / "fluid" / "summary.json"),
+                    fluid_seq = read_text(seq / "fluid" / "summary.json");
   const auto number_after = [](const std::string& s, const std::string& key) {
     const auto at = s.find("\"" + key + "\"");
     return at == std::string::npos ? -1.0 : std::strtod(s.c_str() + s.find(':', at) + 1, nullptr);
   };
   const double lag = number_after(fluid_pip, "max_step_over_stable");
-  std::printf("[ measured ] pipelined vs sequential cycle: max |dx| = %.3e m of %.3f m travel over %zu cycles; "
-              "largest step / stable step %.4f\n",
-              worst, travel, b.size(), lag);
+  std::printf(
+      "[ measured ] pipelined vs sequential cycle: max |dx| = %.3e m of %.3f m travel over %zu cycles; "
+      "largest step / stable step %.4f\n",
+      worst, travel, b.size(), lag);
   EXPECT_NE(fluid_pip.find("\"scheme\": \"pipelined\""), std::string::npos) << fluid_pip;
   EXPECT_NE(fluid_seq.find("\"scheme\": \"sequential\""), std::string::npos) << fluid_seq;
   EXPECT_GT(travel, 0.3);

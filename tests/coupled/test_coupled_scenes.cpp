@@ -4,11 +4,11 @@
 #include <signal.h>
 
 #include <chrono>
-#include <regex>
-#include <set>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <thread>
 
 #include "common/io/hdf5_file.h"
@@ -48,8 +48,8 @@ TEST(CoupledScenes, AdvectedBlockCreatesNoFlow) {
     worst = std::max({worst, std::abs(p[c] - 1.0), std::abs(rho[c] - 1.0), std::abs(u[3 * c] - 0.1) / 0.1,
                       std::abs(u[3 * c + 1] - 0.1) / 0.1, std::abs(u[3 * c + 2]) / 0.1});
   }
-  std::printf("[ measured ] coupled advection: %d flow cells, %d body cells, max relative deviation %.2e\n", flow,
-              body, worst);
+  std::printf("[ measured ] coupled advection: %d flow cells, %d body cells, max relative deviation %.2e\n", flow, body,
+              worst);
   EXPECT_GT(body, 4);
   EXPECT_LT(worst, 1e-10);
   EXPECT_NEAR(last.read_double_attribute("/", "time").at(0), h.t.back(), 1e-9);  // history: 12 digits
@@ -90,7 +90,8 @@ TEST(CoupledScenes, PistonSceneTranscriptOfTheFirstCycles) {
 TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
   const fs::path dir = run_dir("killed");
   const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
-                          dir.string() + " --quiet --set coupling.time.end=100 > " + dir.string() + ".log 2>&1 & echo $!";
+                          dir.string() + " --quiet --set coupling.time.end=100 > " + dir.string() +
+                          ".log 2>&1 & echo $!";
   FILE* f = ::popen(cmd.c_str(), "r");
   ASSERT_NE(f, nullptr);
   long launcher_pid = 0;
@@ -160,8 +161,9 @@ TEST(CoupledScenes, InterruptStopsAllThreeAndKeepsCompleteSnapshots) {
     const int listed = static_cast<int>(names.size());
     for (const std::string& name : names) {
       io::Hdf5File h(dir / solver / name, io::Hdf5File::Mode::ReadOnly);
-      EXPECT_FALSE(h.read_doubles(std::string("/cell/") + (std::string(solver) == "fluid" ? "gas_pressure" : "pressure"))
-                       .empty())
+      EXPECT_FALSE(
+          h.read_doubles(std::string("/cell/") + (std::string(solver) == "fluid" ? "gas_pressure" : "pressure"))
+              .empty())
           << name;
     }
     EXPECT_GE(listed, 2) << solver;

@@ -52,16 +52,25 @@ inline launcher::Child child(const std::string& name, std::vector<std::string> a
 
 inline std::vector<std::string> peer_args(const std::string& role, const std::string& ep, const fs::path& scene,
                                           std::vector<std::string> extra = {}) {
-  std::vector<std::string> a{bin("cosim_scripted_peer").string(), "--role", role, "--endpoint", ep,
-                             "--token", "tok", "--scene", scene.string(), "--connect-timeout", "3"};
+  std::vector<std::string> a{bin("cosim_scripted_peer").string(),
+                             "--role",
+                             role,
+                             "--endpoint",
+                             ep,
+                             "--token",
+                             "tok",
+                             "--scene",
+                             scene.string(),
+                             "--connect-timeout",
+                             "3"};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
 
 inline std::vector<std::string> coupler_args(const std::string& ep, const fs::path& scene, const fs::path& out,
                                              std::vector<std::string> extra = {}) {
-  std::vector<std::string> a{bin("coupler").string(), scene.string(), "--endpoint", ep, "--token", "tok",
-                             "--out", out.string()};
+  std::vector<std::string> a{
+      bin("coupler").string(), scene.string(), "--endpoint", ep, "--token", "tok", "--out", out.string()};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }

@@ -44,7 +44,7 @@ TEST(InterfaceConditions, HeavySolidGivesTheFluidTheWallVelocity) {
   for (Mode m : {Mode::Impedance, Mode::Characteristic}) {
     const auto st = interface_point(m, /*v_s*/ 2.0, /*sigma_s*/ -5e5, /*z_s*/ 1e12, /*v_f*/ -1.0, /*p_f*/ 1e5, 400.0);
     EXPECT_NEAR(st.velocity, 2.0, 1e-6);
-    if (m == Mode::Impedance) EXPECT_NEAR(st.pressure, 1e5, 1e-3);  // eq. 21: the fluid pressure
+    if (m == Mode::Impedance) EXPECT_NEAR(st.pressure, 1e5, 1e-3);    // eq. 21: the fluid pressure
     else EXPECT_NEAR(st.pressure, 1e5 + 400.0 * (2.0 - -1.0), 1e-3);  // + z_f (v_s - v_f): the wall pushes
   }
   const double inf = std::numeric_limits<double>::infinity();
@@ -101,10 +101,10 @@ TEST(InterfaceConditions, OrientationMirroredFacesGiveMirroredStates) {
     EXPECT_DOUBLE_EQ(right.normal_velocity[0], left.normal_velocity[0]);
   }
   // A solid moving into the fluid compresses it: p_I > p_f (characteristic), and pulls less when receding.
-  const auto in = interface_conditions(face(-1, -1.0, -1e5, 1000.0), samples({1}, {0.0}, {1e5}, {400}),
-                                       Mode::Characteristic);
-  const auto out = interface_conditions(face(-1, +1.0, -1e5, 1000.0), samples({1}, {0.0}, {1e5}, {400}),
-                                        Mode::Characteristic);
+  const auto in =
+      interface_conditions(face(-1, -1.0, -1e5, 1000.0), samples({1}, {0.0}, {1e5}, {400}), Mode::Characteristic);
+  const auto out =
+      interface_conditions(face(-1, +1.0, -1e5, 1000.0), samples({1}, {0.0}, {1e5}, {400}), Mode::Characteristic);
   EXPECT_GT(in.pressure[0], 1e5);
   EXPECT_LT(out.pressure[0], 1e5);
   EXPECT_DOUBLE_EQ(in.normal_velocity[0], (400 * 0.0 + 1000 * 1.0) / 1400.0);  // velocity projected on the normal
@@ -112,12 +112,11 @@ TEST(InterfaceConditions, OrientationMirroredFacesGiveMirroredStates) {
 
 TEST(InterfaceConditions, PerPhaseWeightingAndVolumeAverage) {
   // Two phases with different impedances see different interface states; the solid gets sum alpha p_I.
-  const auto st = interface_conditions(face(1, 0.0, -1e5, 1000.0),
-                                       samples({0.25, 0.75}, {1.0, 1.0}, {2e5, 2e5}, {1000.0, 3000.0}),
-                                       Mode::Impedance);
+  const auto st = interface_conditions(
+      face(1, 0.0, -1e5, 1000.0), samples({0.25, 0.75}, {1.0, 1.0}, {2e5, 2e5}, {1000.0, 3000.0}), Mode::Impedance);
   ASSERT_EQ(st.pressure.size(), 2u);
-  EXPECT_DOUBLE_EQ(st.pressure[0], 0.5 * 2e5 + 0.5 * 1e5);      // w_s = 1/2
-  EXPECT_DOUBLE_EQ(st.pressure[1], 0.25 * 2e5 + 0.75 * 1e5);    // w_s = 1/4
+  EXPECT_DOUBLE_EQ(st.pressure[0], 0.5 * 2e5 + 0.5 * 1e5);    // w_s = 1/2
+  EXPECT_DOUBLE_EQ(st.pressure[1], 0.25 * 2e5 + 0.75 * 1e5);  // w_s = 1/4
   EXPECT_DOUBLE_EQ(st.normal_velocity[0], 0.5);
   EXPECT_DOUBLE_EQ(st.normal_velocity[1], 0.75);
   EXPECT_DOUBLE_EQ(st.face_pressure[0], 0.25 * st.pressure[0] + 0.75 * st.pressure[1]);

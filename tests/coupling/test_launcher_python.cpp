@@ -37,9 +37,9 @@ TEST(CouplingLauncher, PythonPistonUnderAConstantPressureDifference) {
   const fs::path dir = test_dir("piston");
   const fs::path scene = write_scene(dir, "  time: {end: 0.01}\n  output: {interval: 0.005}\n  predictor: none\n");
   const fs::path run = dir / "run";
-  const int rc = run_cosim(scene.string() + " --out " + run.string() + " " + fluid_exe("--pressure-gradient 1e5") +
-                               " " + piston_exe(),
-                           dir / "cosim.log");
+  const int rc = run_cosim(
+      scene.string() + " --out " + run.string() + " " + fluid_exe("--pressure-gradient 1e5") + " " + piston_exe(),
+      dir / "cosim.log");
   ASSERT_EQ(rc, 0) << read_file(dir / "cosim.log") << read_file(run / "solid.log") << read_file(run / "coupler.log");
   std::ifstream in(run / "solid" / "piston.csv");
   std::string header, line;
@@ -51,9 +51,7 @@ TEST(CouplingLauncher, PythonPistonUnderAConstantPressureDifference) {
     ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &t, &x, &v, &f), 4) << line;
     EXPECT_NEAR(v, a * t, 1e-9 + 1e-6 * std::abs(a * t)) << line;
     EXPECT_NEAR(x, 0.5 * a * t * t, 1e-12 + 0.5 * std::abs(a) * t * dt) << line;
-    if (t > 0) {
-      EXPECT_GT(std::abs(x), 0.5 * std::abs(a) * t * t * 0.99) << line;
-    }
+    if (t > 0) { EXPECT_GT(std::abs(x), 0.5 * std::abs(a) * t * t * 0.99) << line; }
     ++rows;
   }
   EXPECT_EQ(rows, 3);  // t = 0, 0.005, 0.01
@@ -65,9 +63,9 @@ TEST(CouplingLauncher, FailingProcessIsNamedAndNothingIsLeftRunning) {
   const fs::path dir = test_dir("launch_fail");
   const fs::path scene = write_scene(dir, "  time: {end: 1.0e9}\n");
   const fs::path run = dir / "run";
-  const int rc = run_cosim(scene.string() + " --out " + run.string() + " --tcp " + fluid_exe("--protocol-version 7") +
-                               " " + piston_exe(),
-                           dir / "cosim.log");
+  const int rc = run_cosim(
+      scene.string() + " --out " + run.string() + " --tcp " + fluid_exe("--protocol-version 7") + " " + piston_exe(),
+      dir / "cosim.log");
   const std::string log = read_file(dir / "cosim.log");
   EXPECT_NE(rc, 0);
   EXPECT_NE(log.find("failed with exit code"), std::string::npos) << log;
@@ -105,9 +103,7 @@ TEST(CouplingClient, MalformedMessageFromTheCouplerGetsAnErrorReply) {
       o.token = "tok";
       o.connect_timeout = 5.0;
       coupling::Client c(o);
-    } catch (const coupling::ProtocolError& e) {
-      client_error = e.what();
-    } catch (const std::exception& e) {
+    } catch (const coupling::ProtocolError& e) { client_error = e.what(); } catch (const std::exception& e) {
       client_error = std::string("wrong exception: ") + e.what();
     }
   });

@@ -22,7 +22,7 @@ struct ThreeProcs {
   std::string ep;
   std::vector<Child> cs;  // coupler, fluid, solid
   ThreeProcs(const std::string& name, const std::string& coupling, std::vector<std::string> fluid_extra = {},
-      std::vector<std::string> solid_extra = {}, std::vector<std::string> coupler_extra = {}) {
+             std::vector<std::string> solid_extra = {}, std::vector<std::string> coupler_extra = {}) {
     dir = test_dir(name);
     scene = write_scene(dir, coupling);
     ep = "ipc://" + (dir / "c.sock").string();
@@ -51,7 +51,8 @@ TEST(CouplingProcesses, VersionMismatchRefusedOnBothSides) {
   EXPECT_EQ(r.cs[0].exit_code, 5);
   EXPECT_EQ(r.cs[1].exit_code, 5);
   EXPECT_NE(r.cs[2].exit_code, 0);
-  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version " + std::to_string(cosim::coupling::kProtocolVersion);
+  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version " +
+                               std::to_string(cosim::coupling::kProtocolVersion);
   EXPECT_NE(r.log(0).find(expected), std::string::npos) << r.log(0);
   EXPECT_NE(r.log(1).find("refused fluid: " + expected), std::string::npos) << r.log(1);
   // The solid is told why when it had connected before the refusal, otherwise it gets no Welcome.
@@ -93,7 +94,8 @@ TEST(CouplingProcesses, MalformedBytesGetAnErrorReplyAndNoCrash) {
   ASSERT_TRUE(e->has_error());
   EXPECT_NE(e->error().reason().find("malformed message (12 bytes)"), std::string::npos) << e->error().reason();
   // A stranger's garbage does not end the run: the solvers can still connect and finish.
-  std::vector<Child> peers{child("fluid", peer_args("fluid", ep, scene), dir), child("solid", peer_args("solid", ep, scene), dir)};
+  std::vector<Child> peers{child("fluid", peer_args("fluid", ep, scene), dir),
+                           child("solid", peer_args("solid", ep, scene), dir)};
   for (auto& c : peers) launcher::start(c);
   cs.insert(cs.end(), peers.begin(), peers.end());
   wait_all(cs, 20);
@@ -143,9 +145,10 @@ TEST(CouplingProcesses, ProtocolTranscriptOfTheFirstCycles) {
   const fs::path scene = write_scene(dir, "  mode: impedance\n  time: {end: 3.0e-4}\n  output: {interval: 2.0e-4}\n");
   const std::string ep = "ipc://" + (dir / "c.sock").string();
   const fs::path got = dir / "transcript.txt";
-  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out", {"--transcript", got.string()}), dir),
-                        child("fluid", peer_args("fluid", ep, scene, {"--phases", "2", "--pressure-gradient", "1e4"}), dir),
-                        child("solid", peer_args("solid", ep, scene, {"--impedance", "1000", "--velocity", "2"}), dir)};
+  std::vector<Child> cs{
+      child("coupler", coupler_args(ep, scene, dir / "out", {"--transcript", got.string()}), dir),
+      child("fluid", peer_args("fluid", ep, scene, {"--phases", "2", "--pressure-gradient", "1e4"}), dir),
+      child("solid", peer_args("solid", ep, scene, {"--impedance", "1000", "--velocity", "2"}), dir)};
   for (auto& c : cs) launcher::start(c);
   wait_all(cs, 20);
   for (auto& c : cs) ASSERT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
@@ -170,7 +173,8 @@ TEST(CouplingProcesses, HungPeerDetectedByHeartbeatTimeout) {
   const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_FALSE(r.cs[0].running);
   EXPECT_LT(waited, 2.6);
-  EXPECT_NE(r.log(0).find("solid (scripted_solid, pid " + std::to_string(r.cs[2].pid) + ") declared dead: no message "
+  EXPECT_NE(r.log(0).find("solid (scripted_solid, pid " + std::to_string(r.cs[2].pid) +
+                          ") declared dead: no message "
                           "or heartbeat for 2.0 s (timeout 2 s)"),
             std::string::npos)
       << r.log(0);

@@ -25,9 +25,7 @@ fluid:
 std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
   try {
     parse_fluid_scene(text, sets);
-  } catch (const config::ConfigError& e) {
-    return e.what();
-  }
+  } catch (const config::ConfigError& e) { return e.what(); }
   return "";
 }
 
@@ -51,14 +49,18 @@ TEST(SceneValidation, NegativeCflIsRejected) {
 TEST(SceneValidation, WrongTypeMissingKeyAndBadChoice) {
   EXPECT_NE(error_of(replace(kGood, "end: 0.01", "end: soon")).find("fluid.time.end: expected a number, got 'soon'"),
             std::string::npos);
-  EXPECT_NE(error_of(replace(kGood, "end: 0.01, ", "")).find("fluid.time.end: expected a value (a number), but the key is missing"),
+  EXPECT_NE(error_of(replace(kGood, "end: 0.01, ", ""))
+                .find("fluid.time.end: expected a value (a number), but the key is missing"),
             std::string::npos);
   std::string e = error_of(kGood, {"fluid.numerics.flux=aufz"});
-  EXPECT_NE(e.find("--set fluid.numerics.flux: fluid.numerics.flux: expected one of aufs | hllc | rusanov (did you mean 'aufs'?)"),
-            std::string::npos) << e;
+  EXPECT_NE(e.find("--set fluid.numerics.flux: fluid.numerics.flux: expected one of aufs | hllc | rusanov (did you "
+                   "mean 'aufs'?)"),
+            std::string::npos)
+      << e;
   EXPECT_NE(error_of(replace(kGood, "cells: [50]", "cells: [50, 0]")).find("fluid.mesh.cells"), std::string::npos);
   EXPECT_NE(error_of(replace(kGood, "p: 1.0}", "p: -1.0}")).find("p + pinf > 0"), std::string::npos);
-  EXPECT_NE(error_of(replace(kGood, "fluid:", "fluidd:")).find("unknown key (did you mean 'fluid'?)"), std::string::npos);
+  EXPECT_NE(error_of(replace(kGood, "fluid:", "fluidd:")).find("unknown key (did you mean 'fluid'?)"),
+            std::string::npos);
 }
 
 TEST(SceneValidation, MalformedYamlNamesLine) {

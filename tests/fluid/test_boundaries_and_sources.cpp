@@ -39,9 +39,11 @@ fluid:
   mesh: {cells: [400], lower: [0.0], upper: [1.0]}
   phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]
   time: {end: 0.4}
-  boundaries: {)") + side + R"(: wall}
+  boundaries: {)") + side +
+                         R"(: wall}
   initial:
-    state: {rho: 1.0, velocity: [)" + std::to_string(u) + R"(], p: 1.0}
+    state: {rho: 1.0, velocity: [)" +
+                         std::to_string(u) + R"(], p: 1.0}
 )");
     exact::Star star = exact::solve_star({1, 1, 1}, {1.4, 0}, {1, -1, 1}, {1.4, 0});
     PhaseFields f = sim->phase_fields(0);

@@ -42,7 +42,8 @@ TEST(EmbeddedFlow, AdvectionWithTheFlowStaysUniform) {
 constexpr double kWallY0 = 0.3037;
 
 // Solid below the line through (0, y0) at angle theta (a long rotated polygon), flow state STATE.
-std::string angled_wall_scene(double theta_deg, int n, const std::string& state, double t_end, const std::string& extra = "") {
+std::string angled_wall_scene(double theta_deg, int n, const std::string& state, double t_end,
+                              const std::string& extra = "") {
   const double t = std::tan(theta_deg * std::numbers::pi / 180.0), y0 = kWallY0;
   char buf[2048];
   std::snprintf(buf, sizeof(buf), R"(
@@ -64,7 +65,8 @@ fluid:
 TEST(EmbeddedFlow, UniformFlowParallelToAnAngledWall) {
   const double th = 30 * std::numbers::pi / 180.0, U = 0.5;
   char state[256];
-  std::snprintf(state, sizeof(state), "{rho: 1.0, velocity: [%.17g, %.17g], p: 1.0}", U * std::cos(th), U * std::sin(th));
+  std::snprintf(state, sizeof(state), "{rho: 1.0, velocity: [%.17g, %.17g], p: 1.0}", U * std::cos(th),
+                U * std::sin(th));
   for (const char* order : {"1", "2"}) {
     auto sim = run_scene(angled_wall_scene(30, 64, state, 0.5), {std::string("fluid.embedded.order=") + order});
     PhaseFields f = sim->phase_fields(0);
@@ -78,7 +80,8 @@ TEST(EmbeddedFlow, UniformFlowParallelToAnAngledWall) {
       dmean += du / U;
       ++n;
     }
-    std::printf("order %s: uniform flow along a 30-degree wall: max |du|/U = %.3e, mean %.3e\n", order, dmax, dmean / n);
+    std::printf("order %s: uniform flow along a 30-degree wall: max |du|/U = %.3e, mean %.3e\n", order, dmax,
+                dmean / n);
     EXPECT_LT(dmax, 0.05) << order;
     EXPECT_LT(dmean / n, 2e-3) << order;
   }
@@ -96,8 +99,8 @@ TEST(EmbeddedFlow, ReflectedShockOffAngledWalls) {
     std::snprintf(state, sizeof(state), "{rho: 1.0, velocity: [%.17g, %.17g], p: 1.0}", 0.5 * nx, -0.5 * ny);
     std::snprintf(state, sizeof(state), "{rho: 1.0, velocity: [%.17g, %.17g], p: 1.0}", -0.5 * nx, -0.5 * ny);
     const int N = 160;
-    auto sim = run_scene(angled_wall_scene(deg, N, state, 0.12,
-                                           "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n"));
+    auto sim = run_scene(
+        angled_wall_scene(deg, N, state, 0.12, "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n"));
     PhaseFields f = sim->phase_fields(0);
     auto kind = categories(*sim);
     // Average over flow cells 0.01..0.05 from the wall (the reflected shock is at ~0.12), within
@@ -197,11 +200,12 @@ TEST(EmbeddedFlow, MovingPistonShockWithFirstAndSecondOrderBoundary) {
         for (int r = 0; r < 3; ++r) e[order - 1][r] = piston_errors(Ns[r], order, w, w > 1 ? 0.1 : 0.15, deg);
       for (int order = 1; order <= 2; ++order) {
         const PistonErrors* x = e[order - 1];
-        std::printf("[ measured ] piston at %.1f, %2.0f deg, boundary order %d (N = 40, 80, 160): L1(p) %.3e %.3e %.3e "
-                    "(orders %.2f %.2f); shock offset %+.2f %+.2f %+.2f cells; near-wall |p - p*| / p* %.1e %.1e %.1e\n",
-                    w, deg, order, x[0].l1, x[1].l1, x[2].l1, observed_order(x[0].l1, x[1].l1),
-                    observed_order(x[1].l1, x[2].l1), x[0].shock_offset, x[1].shock_offset, x[2].shock_offset,
-                    x[0].near_wall, x[1].near_wall, x[2].near_wall);
+        std::printf(
+            "[ measured ] piston at %.1f, %2.0f deg, boundary order %d (N = 40, 80, 160): L1(p) %.3e %.3e %.3e "
+            "(orders %.2f %.2f); shock offset %+.2f %+.2f %+.2f cells; near-wall |p - p*| / p* %.1e %.1e %.1e\n",
+            w, deg, order, x[0].l1, x[1].l1, x[2].l1, observed_order(x[0].l1, x[1].l1),
+            observed_order(x[1].l1, x[2].l1), x[0].shock_offset, x[1].shock_offset, x[2].shock_offset, x[0].near_wall,
+            x[1].near_wall, x[2].near_wall);
         EXPECT_GT(observed_order(x[0].l1, x[2].l1, 4.0), 0.55) << w << " " << deg << " " << order;
         for (int r = 0; r < 3; ++r) {
           EXPECT_LT(std::abs(x[r].shock_offset), 1.0) << w << " " << deg << " " << order << " " << Ns[r];
@@ -221,10 +225,10 @@ namespace {
 // Billig's correlation for cylinders, delta / R = 0.386 exp(4.67 / M^2) = 0.648 at M = 3.
 TEST(EmbeddedFlow, SupersonicCylinderBowShockStandOff) {
   const double R = 0.4;
-  FluidScene s = load_fluid_scene(std::string(COSIM_SOURCE_DIR) + "/configs/supersonic_cylinder.yaml",
-                                  {"fluid.mesh.cells=[160, 160]", "fluid.time.end=2.0",
-                                   "fluid.embedded.bodies.0.radius=" + std::to_string(R),
-                                   "fluid.embedded.bodies.0.center=[1.3, 1.0]"});
+  FluidScene s = load_fluid_scene(
+      std::string(COSIM_SOURCE_DIR) + "/configs/supersonic_cylinder.yaml",
+      {"fluid.mesh.cells=[160, 160]", "fluid.time.end=2.0", "fluid.embedded.bodies.0.radius=" + std::to_string(R),
+       "fluid.embedded.bodies.0.center=[1.3, 1.0]"});
   auto sim = make_simulation(s);
   advance_to(*sim, s.t_end);
   PhaseFields f = sim->phase_fields(0);
@@ -241,7 +245,8 @@ TEST(EmbeddedFlow, SupersonicCylinderBowShockStandOff) {
     }
   }
   const double delta = (1.3 - R) - x_shock, billig = 0.386 * std::exp(4.67 / 9.0) * R;
-  std::printf("Mach 3 cylinder: stand-off %.4f (Billig %.4f, %.1f%%)\n", delta, billig, 100 * (delta - billig) / billig);
+  std::printf("Mach 3 cylinder: stand-off %.4f (Billig %.4f, %.1f%%)\n", delta, billig,
+              100 * (delta - billig) / billig);
   EXPECT_NEAR(delta, billig, 0.06 * billig);
 }
 
@@ -283,8 +288,9 @@ TEST(EmbeddedFlow, LowMachStepKeepsVorticityWithCorrection) {
     advance_to(*sim, s.t_end);
     z[lm] = enstrophy(*sim, 160, 80, 2.0 / 160, 1.0 / 80);
   }
-  std::printf("[ measured ] low-Mach step (160 x 80, t = 10): enstrophy %.4e without, %.4e with the correction (x%.2f)\n",
-              z[0], z[1], z[1] / z[0]);
+  std::printf(
+      "[ measured ] low-Mach step (160 x 80, t = 10): enstrophy %.4e without, %.4e with the correction (x%.2f)\n", z[0],
+      z[1], z[1] / z[0]);
   EXPECT_GT(z[1], 1.6 * z[0]);
 }
 
@@ -307,7 +313,8 @@ TEST(EmbeddedFlow, TwoPhaseMixtureAtAngledWall) {
   auto make = [&](double ux, double uy) {
     char state[512];
     std::snprintf(state, sizeof(state), "{p: 1.0e5, T: 300, alpha: [0.99, 0.01], velocity: [%.17g, %.17g]}", ux, uy);
-    std::string sc = angled_wall_scene(30, 80, state, 3.0e-4, "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n");
+    std::string sc =
+        angled_wall_scene(30, 80, state, 3.0e-4, "  boundaries: {x_lower: transmissive, x_upper: transmissive}\n");
     sc.replace(sc.find("  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n"),
                std::string("  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n").size(), phases);
     return sc;
@@ -348,9 +355,10 @@ TEST(EmbeddedFlow, TwoPhaseMixtureAtAngledWall) {
         ++n;
       }
     ASSERT_GT(n, 5);
-    std::printf("two-phase mixture into the wall: first row normal velocity air %.3f, dust %.3f m/s (incoming -50), "
-                "p %.4g Pa, dust alpha %.4f (incoming 0.01)\n",
-                un_air / n, un_dust / n, p / n, alpha_dust / n);
+    std::printf(
+        "two-phase mixture into the wall: first row normal velocity air %.3f, dust %.3f m/s (incoming -50), "
+        "p %.4g Pa, dust alpha %.4f (incoming 0.01)\n",
+        un_air / n, un_dust / n, p / n, alpha_dust / n);
     // The wall stops both phases (heavy 10 um tungsten keeps arriving: drag time ~6 ms), the
     // particles pile up against it, the gas is compressed.
     EXPECT_LT(std::abs(un_air / n), 25.0);
@@ -410,8 +418,8 @@ fluid:
   double length = 0;
   while (std::getline(seg, line)) {
     double v[13];
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3],
-                          &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &v[10], &v[11], &v[12]),
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2],
+                          &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &v[10], &v[11], &v[12]),
               13);
     if (v[6] < -0.99) {
       EXPECT_NEAR(v[3], 1.4, 1e-9);
@@ -459,7 +467,7 @@ fluid:
   // The slab's +x face, rotated about the box centre; probe cells 0.04..0.10 ahead of the moving
   // face near the domain centre, where the exact state is uniform.
   const double cx = -0.02, cy = 0.2;  // box centre: the moving face starts through (0.5, 0.5)
-  const double face0 = 0.6;          // half-width in x: the face is at distance 0.6 from the centre
+  const double face0 = 0.6;           // half-width in x: the face is at distance 0.6 from the centre
   double psum = 0;
   int n = 0;
   for (int k = 0; k < 4; ++k)

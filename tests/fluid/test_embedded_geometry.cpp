@@ -103,9 +103,7 @@ std::size_t check_consistency(const Grid<DIM>& g, const Surface& s, const Embedd
       sum += ip.weights[static_cast<std::size_t>(k)];
       const bool flow = is_flow_cell(e.category[ip.stencil[static_cast<std::size_t>(k)]]);
       EXPECT_EQ(flow, !((ip.non_flow_mask >> k) & 1));
-      if (!flow) {
-        EXPECT_EQ(ip.weights[static_cast<std::size_t>(k)], 0.0);
-      }
+      if (!flow) { EXPECT_EQ(ip.weights[static_cast<std::size_t>(k)], 0.0); }
     }
     EXPECT_NEAR(sum, 1.0, 1e-12);
     // plain weights reproduce linear functions at x_IP (inside the hull of the padded centres)
@@ -172,10 +170,11 @@ TEST(EmbeddedGeometry, CircleSegmentsDistanceCategoriesImagePoints) {
     EXPECT_NEAR(norm(ip.wall_velocity - v), 0.0, 1e-14);
   }
   EXPECT_EQ(e.counts.ghost + e.counts.solid_cut, e.image_points.size());
-  std::printf("[ circle 64^2, R=%.2f, %d segments ] segments %zu, cut cells %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), "
-              "ghost %zu, pushed image points %zu, band centres %zu, band nodes %zu\n",
-              R, N, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost, count_pushed(e),
-              e.work.band_centres, e.work.band_nodes);
+  std::printf(
+      "[ circle 64^2, R=%.2f, %d segments ] segments %zu, cut cells %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), "
+      "ghost %zu, pushed image points %zu, band centres %zu, band nodes %zu\n",
+      R, N, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost,
+      count_pushed(e), e.work.band_centres, e.work.band_nodes);
   EXPECT_GT(in_band, 0u);
   EXPECT_TRUE(e.thin.empty());
 }
@@ -217,10 +216,12 @@ void check_box_2d(double rotation_deg, bool walls_on_grid_lines) {
     EXPECT_EQ(e.counts.fluid_cut, 0u);
     EXPECT_EQ(e.counts.promoted, e.counts.solid_cut);
   }
-  for (const auto& ip : e.image_points) EXPECT_GT(box_sdf(ip.x_image, m, 0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), th), 0);
-  std::printf("[ box %.0f deg ] segments %zu, cut %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), ghost %zu, pushed %zu\n",
-              rotation_deg, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost,
-              count_pushed(e));
+  for (const auto& ip : e.image_points)
+    EXPECT_GT(box_sdf(ip.x_image, m, 0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), th), 0);
+  std::printf(
+      "[ box %.0f deg ] segments %zu, cut %zu (fluid-cut %zu, solid-cut %zu, promoted %zu), ghost %zu, pushed %zu\n",
+      rotation_deg, e.segments.size(), cut, e.counts.fluid_cut, e.counts.solid_cut, e.counts.promoted, e.counts.ghost,
+      count_pushed(e));
 }
 
 TEST(EmbeddedGeometry, AlignedBoxWithWallsOnGridLines) { check_box_2d(0, true); }
@@ -262,7 +263,8 @@ void check_subdivided_box(const Grid<DIM>& g, const Vec3& lo, const Vec3& hi, co
 TEST(EmbeddedGeometry, BoxOfManyCoplanarFacesHasTheExactDistance) {
   for (double deg : {0.0, 30.0}) {
     check_subdivided_box(Grid<2>({64, 64, 1}, {0, 0, 0}, {1, 1, 1}), {0.3, 0.33, 0}, {0.71, 0.58, 0}, {12, 7, 1}, deg);
-    check_subdivided_box(Grid<3>({24, 24, 24}, {0, 0, 0}, {1, 1, 1}), {0.31, 0.29, 0.33}, {0.72, 0.61, 0.68}, {5, 4, 6}, deg);
+    check_subdivided_box(Grid<3>({24, 24, 24}, {0, 0, 0}, {1, 1, 1}), {0.31, 0.29, 0.33}, {0.72, 0.61, 0.68}, {5, 4, 6},
+                         deg);
   }
 }
 
@@ -297,10 +299,11 @@ TEST(EmbeddedGeometry, SphereAreaVolumeDistance3D) {
     EXPECT_GT(norm(ip.x_image - c) - R, -chord);
     EXPECT_NEAR(ip.wall_velocity[0], 0.1, 1e-14);
   }
-  std::printf("[ sphere 32^3, 1280 faces ] segments %zu, cut %zu, ghost %zu, pushed %zu, clip tests %zu, distance tests %zu, "
-              "volume %.6f vs sphere %.6f\n",
-              e.segments.size(), cut, e.counts.ghost, count_pushed(e), e.work.clip_tests, e.work.distance_tests, vol,
-              4.0 / 3 * kPi * R * R * R);
+  std::printf(
+      "[ sphere 32^3, 1280 faces ] segments %zu, cut %zu, ghost %zu, pushed %zu, clip tests %zu, distance tests %zu, "
+      "volume %.6f vs sphere %.6f\n",
+      e.segments.size(), cut, e.counts.ghost, count_pushed(e), e.work.clip_tests, e.work.distance_tests, vol,
+      4.0 / 3 * kPi * R * R * R);
 }
 
 TEST(EmbeddedGeometry, RotatedBoxAndStep3D) {
@@ -330,8 +333,8 @@ TEST(EmbeddedGeometry, MovingCircleShiftsCategoriesByOneCell) {
       changed += e1.category[g.index(i, j)] != e0.category[g.index(i, j)];
       if (i + 1 < n + 2) mismatched += e1.category[g.index(i + 1, j)] != e0.category[g.index(i, j)];
     }
-  EXPECT_GT(changed, 40u);   // the categories move with the body...
-  EXPECT_EQ(mismatched, 0u); // ...by exactly one cell
+  EXPECT_GT(changed, 40u);    // the categories move with the body...
+  EXPECT_EQ(mismatched, 0u);  // ...by exactly one cell
   // rebuilding into the previous cycle's buffers gives the same result
   GeometryOptions opt;
   EmbeddedGeometry<2> reused = e0;
@@ -353,9 +356,7 @@ TEST(EmbeddedGeometry, ThinBodiesAreRefusedWithTheirLocation) {
     opt.thin_reach = reach;
     try {
       build_geometry(g, make_box(2, {0.3, y0, 0}, {0.7, y0 + thickness, 0}), opt);
-    } catch (const std::runtime_error& err) {
-      return err.what();
-    }
+    } catch (const std::runtime_error& err) { return err.what(); }
     return "";
   };
   // one cell thick at several offsets against the grid, and thinner than a cell
@@ -368,7 +369,8 @@ TEST(EmbeddedGeometry, ThinBodiesAreRefusedWithTheirLocation) {
   // 1.6 cells: each side has its own first ghost layer (accepted), the second layer is shared
   EXPECT_EQ(message(0.5 + 0.2 * h, 1.6 * h), "");
   EXPECT_NE(message(0.5 + 0.2 * h, 1.6 * h, 2).find("thinner than two cells"), std::string::npos);
-  EXPECT_NE(message(0.5 + 0.6 * h, 1.6 * h).find("thinner than two cells"), std::string::npos);  // centres 0.9 / 1.9: both near the top
+  EXPECT_NE(message(0.5 + 0.6 * h, 1.6 * h).find("thinner than two cells"),
+            std::string::npos);  // centres 0.9 / 1.9: both near the top
   for (double off : {0.0, 0.3, 0.77}) EXPECT_EQ(message(0.5 + off * h, 2 * h), "") << off;
   // two cells with both walls through cell centres (phi = 0 there: flow cells): one solid row is left
   EXPECT_NE(message(0.5 + 0.5 * h, 2 * h).find("thinner than two cells"), std::string::npos);
@@ -402,22 +404,26 @@ TEST(EmbeddedGeometry, WorkFollowsTheSurfaceNotTheGrid) {
     EmbeddedGeometry<2> again = b;
     build_geometry(g, make_circle({0.503 + 0.3 / 1024, 0.497, 0}, 0.3, 64), GeometryOptions{}, again);
     const auto& t = again.timing;
-    std::printf("[ timing 1024^2, reused buffers ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, "
-                "image points %.3f ms, thin %.3f ms, total %.3f ms\n",
-                1e3 * t.surface, 1e3 * t.clip, 1e3 * t.distance, 1e3 * t.categories, 1e3 * t.image_points, 1e3 * t.thin, 1e3 * t.total);
+    std::printf(
+        "[ timing 1024^2, reused buffers ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, "
+        "image points %.3f ms, thin %.3f ms, total %.3f ms\n",
+        1e3 * t.surface, 1e3 * t.clip, 1e3 * t.distance, 1e3 * t.categories, 1e3 * t.image_points, 1e3 * t.thin,
+        1e3 * t.total);
   }
   auto cut = [](const auto& e) { return static_cast<double>(e.counts.fluid_cut + e.counts.solid_cut); };
   const double r_cut = cut(b) / cut(a), r_clip = double(b.work.clip_tests) / double(a.work.clip_tests),
                r_dist = double(b.work.distance_tests) / double(a.work.distance_tests);
-  std::printf("[ locality ] 512^2: cut %.0f, clip tests %zu, distance tests %zu, band %zu; 1024^2: cut %.0f, clip tests %zu, "
-              "distance tests %zu, band %zu; ratios cut %.2f clip %.2f distance %.2f (all cells: 4)\n",
-              cut(a), a.work.clip_tests, a.work.distance_tests, a.work.band_centres, cut(b), b.work.clip_tests, b.work.distance_tests,
-              b.work.band_centres, r_cut, r_clip, r_dist);
+  std::printf(
+      "[ locality ] 512^2: cut %.0f, clip tests %zu, distance tests %zu, band %zu; 1024^2: cut %.0f, clip tests %zu, "
+      "distance tests %zu, band %zu; ratios cut %.2f clip %.2f distance %.2f (all cells: 4)\n",
+      cut(a), a.work.clip_tests, a.work.distance_tests, a.work.band_centres, cut(b), b.work.clip_tests,
+      b.work.distance_tests, b.work.band_centres, r_cut, r_clip, r_dist);
   for (const auto* e : {&a, &b})
-    std::printf("[ timing %s ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, image points %.3f ms, "
-                "thin %.3f ms, total %.3f ms\n",
-                e == &a ? "512^2" : "1024^2", 1e3 * e->timing.surface, 1e3 * e->timing.clip, 1e3 * e->timing.distance,
-                1e3 * e->timing.categories, 1e3 * e->timing.image_points, 1e3 * e->timing.thin, 1e3 * e->timing.total);
+    std::printf(
+        "[ timing %s ] surface %.3f ms, clip %.3f ms, distance %.3f ms, categories %.3f ms, image points %.3f ms, "
+        "thin %.3f ms, total %.3f ms\n",
+        e == &a ? "512^2" : "1024^2", 1e3 * e->timing.surface, 1e3 * e->timing.clip, 1e3 * e->timing.distance,
+        1e3 * e->timing.categories, 1e3 * e->timing.image_points, 1e3 * e->timing.thin, 1e3 * e->timing.total);
   EXPECT_NEAR(r_cut, 2.0, 0.1);
   EXPECT_GT(r_clip, 1.7);
   EXPECT_LT(r_clip, 2.3);
@@ -425,7 +431,8 @@ TEST(EmbeddedGeometry, WorkFollowsTheSurfaceNotTheGrid) {
   EXPECT_LT(r_dist, 2.4);
   // and with the body size at a fixed grid (same segment length)
   const double r_size = double(a.work.distance_tests) / double(small.work.distance_tests);
-  std::printf("[ locality ] 512^2 R=0.15: distance tests %zu; R=0.3 / R=0.15: %.2f\n", small.work.distance_tests, r_size);
+  std::printf("[ locality ] 512^2 R=0.15: distance tests %zu; R=0.3 / R=0.15: %.2f\n", small.work.distance_tests,
+              r_size);
   EXPECT_GT(r_size, 1.6);
   EXPECT_LT(r_size, 2.4);
 }
@@ -438,9 +445,7 @@ TEST(EmbeddedGeometry, Interval1D) {
   check_consistency(g, s, e);
   for (int i = -2; i < 42; ++i) {
     const double x = g.center(0, i), exact = std::max(a - x, x - b);
-    if (std::abs(exact) < e.band_width) {
-      EXPECT_NEAR(e.centres.phi[g.index(i)], exact, 1e-14);
-    }
+    if (std::abs(exact) < e.band_width) { EXPECT_NEAR(e.centres.phi[g.index(i)], exact, 1e-14); }
   }
   // a = 0.513 lies in cell 20 (centre 0.5125 < a): fluid-cut; cell 21 ghost... the body's left end
   EXPECT_EQ(e.kind(g.index(20)), CellKind::FluidCut);
@@ -464,7 +469,8 @@ TEST(EmbeddedGeometry, OpenOrInconsistentSurfacesAreRejected) {
   holed.faces.erase(holed.faces.begin());
   EXPECT_THROW(build_topology(holed), std::runtime_error);
   const Grid<2> g({16, 16, 1}, {0, 0, 0}, {1, 1, 1});
-  EXPECT_THROW(build_geometry(g, make_sphere({0.5, 0.5, 0.5}, 0.2, 0), 3.0), std::runtime_error);  // 3D surface, 2D grid
+  EXPECT_THROW(build_geometry(g, make_sphere({0.5, 0.5, 0.5}, 0.2, 0), 3.0),
+               std::runtime_error);  // 3D surface, 2D grid
 }
 
 TEST(EmbeddedGeometry, SceneBodiesBecomeClosedSurfaces) {
@@ -537,7 +543,8 @@ TEST(EmbeddedGeometry, SceneBodiesOnTheirMeshes) {
 TEST(EmbeddedGeometry, ThinPlate3DIsRefused) {
   const Grid<3> g({24, 24, 24}, {0, 0, 0}, {1, 1, 1});
   const double h = 1.0 / 24;
-  EXPECT_THROW(build_geometry(g, make_box(3, {0.3, 0.3, 0.5 + 0.4 * h}, {0.7, 0.7, 0.5 + 1.4 * h}), 3.0), std::runtime_error);
+  EXPECT_THROW(build_geometry(g, make_box(3, {0.3, 0.3, 0.5 + 0.4 * h}, {0.7, 0.7, 0.5 + 1.4 * h}), 3.0),
+               std::runtime_error);
   EXPECT_NO_THROW(build_geometry(g, make_box(3, {0.3, 0.3, 0.5 + 0.4 * h}, {0.7, 0.7, 0.5 + 5.4 * h}), 3.0));
 }
 
@@ -602,7 +609,8 @@ TEST(EmbeddedGeometry, IncrementalLevelSetEqualsAFreshBuild) {
   const double h = 1.0 / n;
   check_incremental(Grid<2>({n, n, 1}, {0, 0, 0}, {1, 1, 1}), make_circle({0.31, 0.52, 0}, 0.2, 64, {h, 0.4 * h, 0}));
   const int m = 20;
-  check_incremental(Grid<3>({m, m, m}, {0, 0, 0}, {1, 1, 1}), make_sphere({0.33, 0.48, 0.51}, 0.22, 2, {1.0 / m, 0, 0.5 / m}));
+  check_incremental(Grid<3>({m, m, m}, {0, 0, 0}, {1, 1, 1}),
+                    make_sphere({0.33, 0.48, 0.51}, 0.22, 2, {1.0 / m, 0, 0.5 / m}));
 }
 
 }  // namespace

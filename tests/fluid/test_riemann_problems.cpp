@@ -74,7 +74,8 @@ TEST(ToroRiemannProblems, StarPlateausMatchExact) {
     const double xl = 0.5 + c.t * 0.5 * (ex.left_tail() + ex.contact());
     const double xr = 0.5 + c.t * 0.5 * (ex.contact() + ex.right_tail());
     const int il = static_cast<int>(xl * n), ir = static_cast<int>(xr * n);
-    const double scale_u = std::max(std::abs(st.u), std::sqrt(1.4 * std::max(c.L.p, c.R.p) / std::min(c.L.rho, c.R.rho)));
+    const double scale_u =
+        std::max(std::abs(st.u), std::sqrt(1.4 * std::max(c.L.p, c.R.p) / std::min(c.L.rho, c.R.rho)));
     std::printf("%-12s p* %.5g/%.5g  u* %.5g/%.5g  rhoL* %.5g/%.5g  rhoR* %.5g/%.5g\n", c.name, f.p[il], st.p,
                 f.velocity[3 * il], st.u, f.rho[il], st.rho_left, f.rho[ir], st.rho_right);
     EXPECT_NEAR(f.p[il], st.p, c.tol_pu * st.p) << c.name;

@@ -21,9 +21,7 @@ TEST(SceneCatalogue, FluidScenesParseAndSetUp) {
       if (ss.str().find("\nfluid:") == std::string::npos) continue;
       FluidScene s;
       ASSERT_NO_THROW(s = load_fluid_scene(e.path().string())) << e.path();
-      if (s.cells[0] * s.cells[1] * s.cells[2] <= 300000) {
-        EXPECT_NO_THROW(make_simulation(s)) << e.path();
-      }
+      if (s.cells[0] * s.cells[1] * s.cells[2] <= 300000) { EXPECT_NO_THROW(make_simulation(s)) << e.path(); }
       ++count;
     }
   EXPECT_GE(count, 6);

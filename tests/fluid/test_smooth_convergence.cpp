@@ -20,8 +20,10 @@ std::string wave_scene(int dim, int n, const std::string& limiter, double t_end)
   }
   return "fluid:\n  mesh: {cells: " + cells + ", lower: " + lo + ", upper: " + hi +
          "}\n  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n  numerics: {limiter: " + limiter +
-         "}\n  time: {end: " + std::to_string(t_end) + "}\n  boundaries:\n" + per + "  initial:\n    profile: {type: density_wave, rho: 1.0, "
-         "amplitude: 0.2, p: 1.0, wave_number: " + k + ", velocity: " + k + "}\n";
+         "}\n  time: {end: " + std::to_string(t_end) + "}\n  boundaries:\n" + per +
+         "  initial:\n    profile: {type: density_wave, rho: 1.0, "
+         "amplitude: 0.2, p: 1.0, wave_number: " +
+         k + ", velocity: " + k + "}\n";
 }
 
 // Exact cell average of rho = 1 + 0.2 sin(2 pi sum_d (x_d - t)) on the n^dim cells of [0,1]^dim.

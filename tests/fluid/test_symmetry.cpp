@@ -24,8 +24,9 @@ std::string sod_along(int dim, int axis, int n) {
   }
   return "fluid:\n  mesh: {cells: " + cells + ", lower: " + lo + ", upper: " + hi +
          "}\n  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]\n  time: {end: 0.2}\n  boundaries:\n" + bnd +
-         "  initial:\n    state: {rho: 1.0, velocity: " + vel + ", p: 1.0}\n    regions:\n      - half_space: {point: " + pt +
-         ", normal: " + nrm + "}\n        state: {rho: 0.125, velocity: " + vel + ", p: 0.1}\n";
+         "  initial:\n    state: {rho: 1.0, velocity: " + vel +
+         ", p: 1.0}\n    regions:\n      - half_space: {point: " + pt + ", normal: " + nrm +
+         "}\n        state: {rho: 0.125, velocity: " + vel + ", p: 0.1}\n";
 }
 
 // Density and normal velocity along the axis (the first row of cells across).

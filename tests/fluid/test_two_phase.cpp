@@ -174,7 +174,8 @@ fluid:
   phases:
     - {name: gas, material: air}
     - {name: dust, material: tungsten}
-  exchange: {velocity_relaxation: drag, drag_law: )") + law + R"(, particle_diameter: 1.0e-4, gas_viscosity: 1.8e-5}
+  exchange: {velocity_relaxation: drag, drag_law: )") +
+                              law + R"(, particle_diameter: 1.0e-4, gas_viscosity: 1.8e-5}
   time: {end: 1.5e-3}
   boundaries: {x_lower: periodic, x_upper: periodic}
   initial:

@@ -33,8 +33,8 @@ inline double hash_unit(int i, int k) {
 }
 
 // Moves every node not on the box boundary by up to `frac` of the cell size h in each direction.
-inline void distort_interior(Mesh& m, const std::array<double, 3>& lower, const std::array<double, 3>& upper,
-                             double h, double frac) {
+inline void distort_interior(Mesh& m, const std::array<double, 3>& lower, const std::array<double, 3>& upper, double h,
+                             double frac) {
   for (int n = 0; n < m.num_nodes; ++n) {
     bool interior = true;
     for (int d = 0; d < m.dim; ++d) {

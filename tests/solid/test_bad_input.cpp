@@ -3,10 +3,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 #include "solid_solver/core/scene.h"
 
@@ -31,9 +31,7 @@ coupling: {whatever: true}
 std::string error_of(const std::string& yaml, const std::vector<std::string>& ov = {}) {
   try {
     parse_solid_scene(yaml, ov);
-  } catch (const cosim::config::ConfigError& e) {
-    return e.what();
-  }
+  } catch (const cosim::config::ConfigError& e) { return e.what(); }
   return "";
 }
 
@@ -113,7 +111,8 @@ TEST(SolidInput, ExecutableExitCodes) {
   EXPECT_TRUE(fs::exists(dir / "o5" / "solid.xmf"));
   // A numerical failure: an element inverted by a huge prescribed velocity -> exit code 3, element named.
   EXPECT_EQ(run_solver(good.string() + " --out " + (dir / "o6").string() +
-                           " --quiet --set 'solid.boundaries=[{set: x_lower, type: fixed}, {set: x_upper, type: velocity, vx: -1000}]'"
+                           " --quiet --set 'solid.boundaries=[{set: x_lower, type: fixed}, {set: x_upper, type: "
+                           "velocity, vx: -1000}]'"
                            " --set solid.numerics.q_quadratic=0 --set solid.numerics.q_linear=0",
                        log),
             3)

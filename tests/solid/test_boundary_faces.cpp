@@ -20,7 +20,8 @@ solid:
   blocks:
     - {}
   time: {{end: 1.0}}
-)", cells, upper, block));
+)",
+                                       cells, upper, block));
 }
 const char* kGas = "{name: gas, eos: {type: ideal_gas, gamma: 1.4}, density: 1.2, initial: {pressure: 1.0e5}}";
 }  // namespace
@@ -162,7 +163,8 @@ TEST(SolidBoundaryFaces, TranslatingBlockKeepsItsVelocityUnderItsOwnInterfaceVel
     sim.advance(1e-7);
     double worst = 0;
     for (int n = 0; n < sim.mesh().num_nodes; ++n)
-      for (int d = 0; d < dim; ++d) worst = std::max(worst, std::abs(sim.state().v[static_cast<std::size_t>(n) * dim + d] - v[d]));
+      for (int d = 0; d < dim; ++d)
+        worst = std::max(worst, std::abs(sim.state().v[static_cast<std::size_t>(n) * dim + d] - v[d]));
     EXPECT_LT(worst, 1e-9) << dim << "D";
   }
 }

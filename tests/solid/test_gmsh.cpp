@@ -23,9 +23,10 @@ const std::string kData = std::string(COSIM_SOURCE_DIR) + "/tests/solid/data/";
 // `edit` may change the element lines (index = element, 0-based) before they are written.
 std::string hex_strip(int n, const std::function<void(std::vector<std::array<int, 8>>&)>& edit = {}) {
   auto tag = [&](int i, int j, int k) { return 1 + i + (n + 1) * (j + 2 * k); };
-  std::string s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n2 1 \"x_min\"\n2 2 \"x_max\"\n"
-                  "3 3 \"body\"\n$EndPhysicalNames\n$Entities\n0 0 2 1\n1 0 0 0 0 1 1 1 1 0\n"
-                  "2 0 0 0 0 1 1 1 2 0\n1 0 0 0 1 1 1 1 3 0\n$EndEntities\n";
+  std::string s =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n2 1 \"x_min\"\n2 2 \"x_max\"\n"
+      "3 3 \"body\"\n$EndPhysicalNames\n$Entities\n0 0 2 1\n1 0 0 0 0 1 1 1 1 0\n"
+      "2 0 0 0 0 1 1 1 2 0\n1 0 0 0 1 1 1 1 3 0\n$EndEntities\n";
   const int nn = 4 * (n + 1);
   s += fmt::format("$Nodes\n1 {} 1 {}\n3 1 0 {}\n", nn, nn, nn);
   for (int t = 1; t <= nn; ++t) s += fmt::format("{}\n", t);
@@ -58,9 +59,7 @@ std::string write_tmp(const std::string& name, const std::string& text) {
 std::string error_of(const std::string& path) {
   try {
     read_gmsh(path);
-  } catch (const MeshError& e) {
-    return e.what();
-  }
+  } catch (const MeshError& e) { return e.what(); }
   return "";
 }
 
@@ -109,7 +108,8 @@ solid:
     - {{set: left, type: symmetry}}
     - {{set: right, type: pressure, value: 1.0e5}}
   time: {{end: 1.0e-6}}
-)", kData + "two_blocks_2d.msh"));
+)",
+                                               kData + "two_blocks_2d.msh"));
   EXPECT_EQ(s.dim, 2);
   Simulation sim(s);
   EXPECT_EQ(sim.mesh().block_names[0], "steel");
@@ -121,9 +121,7 @@ solid:
   auto err = [](const std::string& yaml) {
     try {
       parse_solid_scene(yaml);
-    } catch (const cosim::config::ConfigError& ex) {
-      return std::string(ex.what());
-    }
+    } catch (const cosim::config::ConfigError& ex) { return std::string(ex.what()); }
     return std::string();
   };
   const std::string yaml = fmt::format(R"(
@@ -133,12 +131,14 @@ solid:
     - {{name: gass, eos: {{type: ideal_gas, gamma: 1.4}}, density: 1.0}}
     - {{name: steel, material: steel}}
   time: {{end: 1.0}}
-)", kData + "two_blocks_2d.msh");
+)",
+                                       kData + "two_blocks_2d.msh");
   const std::string e1 = err(yaml);
   EXPECT_NE(e1.find("'gass'"), std::string::npos) << e1;
   EXPECT_NE(e1.find("gas, steel"), std::string::npos) << e1;
   EXPECT_NE(e1.find("<scene>:5"), std::string::npos) << e1;
-  const std::string e2 = err(replace(yaml, "    - {name: gass, eos: {type: ideal_gas, gamma: 1.4}, density: 1.0}\n", ""));
+  const std::string e2 =
+      err(replace(yaml, "    - {name: gass, eos: {type: ideal_gas, gamma: 1.4}, density: 1.0}\n", ""));
   EXPECT_NE(e2.find("group 'gas' has none"), std::string::npos) << e2;
   const std::string e3 = err(replace(yaml, "two_blocks_2d.msh", "no_such_file.msh"));
   EXPECT_NE(e3.find("cannot open"), std::string::npos) << e3;
@@ -172,7 +172,8 @@ TEST(SolidGmsh, BadFilesNameElementGroupAndLine) {
   EXPECT_NE(bow.find("element 5 of group 'gas': inverted or self-intersecting"), std::string::npos) << bow;
   const std::string tri = error_of(write_tmp("tri.msh", replace(good, "2 1 3 1\n5 1 2 5 4", "2 1 2 1\n5 1 2 5")));
   EXPECT_NE(tri.find(":46: element 5: element type 2 (3-node triangle) is not supported"), std::string::npos) << tri;
-  const std::string nogroup = error_of(write_tmp("nogroup.msh", replace(good, "1 0 0 0 1 1 0 1 21 0", "1 0 0 0 1 1 0 0 0")));
+  const std::string nogroup =
+      error_of(write_tmp("nogroup.msh", replace(good, "1 0 0 0 1 1 0 1 21 0", "1 0 0 0 1 1 0 0 0")));
   EXPECT_NE(nogroup.find(":46: element 5 (surface 1) belongs to no physical group"), std::string::npos) << nogroup;
   const std::string notface = error_of(write_tmp("notface.msh", replace(good, "1 1 4\n", "1 1 5\n")));
   EXPECT_NE(notface.find(":39: boundary element 1 of group 'left' is not a face"), std::string::npos) << notface;
@@ -181,9 +182,7 @@ TEST(SolidGmsh, BadFilesNameElementGroupAndLine) {
   const std::string trunc = error_of(write_tmp("trunc.msh", good.substr(0, good.find("$EndNodes"))));
   EXPECT_NE(trunc.find("expected"), std::string::npos) << trunc;
   // 3D: a left-handed hexahedron (top and bottom swapped).
-  const std::string hex = error_of(write_tmp("hex.msh", hex_strip(2, [](auto& h) {
-    std::rotate(h[1].begin(), h[1].begin() + 4, h[1].end());
-  })));
-  EXPECT_NE(hex.find("element 4 of group 'body': inverted (negative volume at every corner"), std::string::npos)
-      << hex;
+  const std::string hex = error_of(
+      write_tmp("hex.msh", hex_strip(2, [](auto& h) { std::rotate(h[1].begin(), h[1].begin() + 4, h[1].end()); })));
+  EXPECT_NE(hex.find("element 4 of group 'body': inverted (negative volume at every corner"), std::string::npos) << hex;
 }

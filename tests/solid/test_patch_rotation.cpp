@@ -28,7 +28,8 @@ solid:
       strength: {{shear_modulus: 8.0e10, yield_stress: 1.0e12}}
   numerics: {{q_quadratic: 0, q_linear: 0, hourglass: 0.1}}
   time: {{end: 1.0}}
-)", cells, lo, hi));
+)",
+                                       cells, lo, hi));
 }
 
 void patch_test(int dim) {
@@ -143,7 +144,9 @@ void rotation_test(int dim) {
         for (int l = 0; l < 3; ++l) S[i][j] += R[i][k] * S0[k][l] * R[j][l];
     }
   const double expect[6] = {S[0][0], S[1][1], S[2][2], S[0][1], S[1][2], S[0][2]};
-  auto j2 = [](const double* v) { return v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + 2 * (v[3] * v[3] + v[4] * v[4] + v[5] * v[5]); };
+  auto j2 = [](const double* v) {
+    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + 2 * (v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+  };
   auto j3 = [](const double* v) {
     return v[0] * (v[1] * v[2] - v[4] * v[4]) - v[3] * (v[3] * v[2] - v[4] * v[5]) + v[5] * (v[3] * v[4] - v[1] * v[5]);
   };

@@ -2,8 +2,8 @@
 // Lagrangian, against the two-chamber adiabatic ODE (common/verification/piston_ode.h) over three periods.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -59,10 +59,10 @@ PistonRun run_piston(const std::vector<std::string>& overrides, double rho_pisto
   const auto e = sim.energy();
   r.energy_drift = (e.total() - e0 - e.boundary_work) / e0;
   r.steps = sim.steps();
-  std::printf("[ measured ] piston %dD rho_p/rho_g = %g: %ld steps, ODE period %.5f s, amplitude %.4f m, "
-              "max deviation %.3f%% (plain ODE), %.3f%% (ODE + gas mass/3), energy drift %.1e\n",
-              s.dim, rho_piston, r.steps, tr.period(), r.amplitude, 100 * r.err_plain, 100 * r.err_rayleigh,
-              r.energy_drift);
+  std::printf(
+      "[ measured ] piston %dD rho_p/rho_g = %g: %ld steps, ODE period %.5f s, amplitude %.4f m, "
+      "max deviation %.3f%% (plain ODE), %.3f%% (ODE + gas mass/3), energy drift %.1e\n",
+      s.dim, rho_piston, r.steps, tr.period(), r.amplitude, 100 * r.err_plain, 100 * r.err_rayleigh, r.energy_drift);
   return r;
 }
 }  // namespace
@@ -93,14 +93,14 @@ TEST(SolidPiston, HeavyPiston2DChannel) {
 }
 
 TEST(SolidPiston, HeavyPiston3DStrip) {
-  const PistonRun r = run_piston({"solid.mesh.cells=[80,1,1]", "solid.mesh.lower=[-2,0,0]",
-                                  "solid.mesh.upper=[2,0.05,0.05]",
-                                  "solid.mesh.regions=[{block: piston, lower: [-1,-1,-1], upper: [0,1,1]}, "
-                                  "{block: gas_right, lower: [0,-1,-1], upper: [2,1,1]}]",
-                                  "solid.boundaries=[{set: x_lower, type: symmetry}, {set: x_upper, type: symmetry}, "
-                                  "{set: y_lower, type: symmetry}, {set: y_upper, type: symmetry}, "
-                                  "{set: z_lower, type: symmetry}, {set: z_upper, type: symmetry}]"},
-                                 100.0);
+  const PistonRun r =
+      run_piston({"solid.mesh.cells=[80,1,1]", "solid.mesh.lower=[-2,0,0]", "solid.mesh.upper=[2,0.05,0.05]",
+                  "solid.mesh.regions=[{block: piston, lower: [-1,-1,-1], upper: [0,1,1]}, "
+                  "{block: gas_right, lower: [0,-1,-1], upper: [2,1,1]}]",
+                  "solid.boundaries=[{set: x_lower, type: symmetry}, {set: x_upper, type: symmetry}, "
+                  "{set: y_lower, type: symmetry}, {set: y_upper, type: symmetry}, "
+                  "{set: z_lower, type: symmetry}, {set: z_upper, type: symmetry}]"},
+                 100.0);
   EXPECT_LT(r.err_rayleigh, 0.01);
   EXPECT_LT(std::abs(r.energy_drift), 1e-9);
 }
@@ -120,7 +120,8 @@ TEST(SolidPiston, ExecutableRunsSceneAndRelativeGmshPath) {
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
   };
   EXPECT_EQ(run(std::string(COSIM_SOURCE_DIR) + "/configs/solid_piston_1d.yaml --quiet --out " + (dir / "o1").string() +
-                " --set solid.time.end=0.01 --set solid.output.snapshots=false"), 0);
+                " --set solid.time.end=0.01 --set solid.output.snapshots=false"),
+            0);
   std::ifstream in(dir / "o1" / "summary.json");
   ASSERT_TRUE(in.good());
   const auto j = nlohmann::json::parse(in);

@@ -42,7 +42,8 @@ solid:
   boundaries:
     - {{set: x_lower, type: pressure, value: 1.0e5}}
   time: {{end: 1.0}}
-)", cells, up));
+)",
+                                                 cells, up));
     Simulation sim(s);
     ASSERT_EQ(sim.rigid_bodies().size(), 1u);
     const double m = 200.0, a = 1e5 / m, dt = 1e-4;
@@ -80,13 +81,12 @@ solid:
   blocks:
     - {{name: wheel, rigid: true, density: 7800.0, initial: {{angular_velocity: {}, velocity: {}}}}}
   time: {{end: 1.0}}
-)", cells, up, w, dim == 2 ? "[1.0, 0.0]" : "[1.0, 0.0, 0.0]"));
+)",
+                                                 cells, up, w, dim == 2 ? "[1.0, 0.0]" : "[1.0, 0.0, 0.0]"));
     Simulation sim(s);
     const RigidBody rb0 = sim.rigid_bodies()[0];
     const double ke0 = rigid_body_kinetic_energy(rb0, dim);
-    if (dim == 2) {
-      EXPECT_NEAR(rb0.L[2], rb0.I0[2][2] * 10.0, 1e-9 * std::abs(rb0.L[2]));
-    }
+    if (dim == 2) { EXPECT_NEAR(rb0.L[2], rb0.I0[2][2] * 10.0, 1e-9 * std::abs(rb0.L[2])); }
     for (int i = 0; i < 2000; ++i) sim.advance(1e-3);  // 20 rad: about three turns
     const auto& rb = sim.rigid_bodies()[0];
     for (int d = 0; d < 3; ++d) EXPECT_NEAR(rb.L[d], rb0.L[d], 1e-9 * std::abs(rb0.L[2])) << dim << "D";
@@ -98,8 +98,7 @@ solid:
     for (int d = 0; d < dim; ++d) moved += std::abs(sim.state().x[d] - sim.mesh().x0[d] - (d == 0 ? 2.0 : 0.0));
     EXPECT_GT(moved, 0.1);
     std::printf("[ measured ] %dD spin: shape change %.2e m, |dL| %.2e, kinetic energy drift %.2e\n", dim,
-                max_distance_change(sim), std::abs(rb.L[2] - rb0.L[2]),
-                rigid_body_kinetic_energy(rb, dim) / ke0 - 1.0);
+                max_distance_change(sim), std::abs(rb.L[2] - rb0.L[2]), rigid_body_kinetic_energy(rb, dim) / ke0 - 1.0);
   }
 }
 

@@ -1,5 +1,6 @@
 // Sedov-Taylor blast (numerics.md 8.3) on Lagrangian meshes: shock radius within 3% of
-// R = (E t^2 / (alpha rho0))^(1/(nu+2)) (measured at the density peak) and total energy (internal + kinetic) conserved to round-off.
+// R = (E t^2 / (alpha rho0))^(1/(nu+2)) (measured at the density peak) and total energy (internal + kinetic) conserved
+// to round-off.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -19,9 +20,10 @@ void check_sedov(Simulation& sim, double E_full, double alpha, int nu, double h,
   const double R_half = solid_test::shock_radius_half_max(sim, h, 1.0);
   const auto e = sim.energy();
   const double drift = (e.total() - e0 - e.boundary_work) / e0;
-  std::printf("[ measured ] Sedov nu=%d: %ld steps, shock radius (density peak) %.4f vs %.4f (%.2f%%), "
-              "half-max front %.4f, energy drift %.2e\n", nu, sim.steps(), R, R_exact, 100 * (R - R_exact) / R_exact,
-              R_half, drift);
+  std::printf(
+      "[ measured ] Sedov nu=%d: %ld steps, shock radius (density peak) %.4f vs %.4f (%.2f%%), "
+      "half-max front %.4f, energy drift %.2e\n",
+      nu, sim.steps(), R, R_exact, 100 * (R - R_exact) / R_exact, R_half, drift);
   EXPECT_NEAR(R / R_exact, 1.0, 0.03);
   EXPECT_LT(std::abs(drift), 1e-6);
   EXPECT_LT(std::abs(e.boundary_work / e0), 1e-10);  // symmetry planes do no work
@@ -42,7 +44,8 @@ solid:
     - {{set: x_lower, type: symmetry}}
     - {{set: y_lower, type: symmetry}}
   time: {{end: 1.0}}
-)", alpha / 4));
+)",
+                                               alpha / 4));
   Simulation sim(s);
   check_sedov(sim, alpha, alpha, 2, 0.02, 1.0);
 }

@@ -46,7 +46,8 @@ solid:
     - {{set: y_lower, type: symmetry}}
     - {{set: y_upper, type: symmetry}}
   time: {{end: 1.0}}
-)", K, rho, G, v0));
+)",
+                                               K, rho, G, v0));
   Simulation sim(s);
   const double cL = std::sqrt((K + 4.0 * G / 3.0) / rho);
   double xf[2];
@@ -84,7 +85,8 @@ solid:
     - {{set: z_upper, type: symmetry}}
   numerics: {{q_quadratic: 0, q_linear: 0}}
   time: {{end: 1.0}}
-)", eos_yaml, G, Y));
+)",
+                                               eos_yaml, G, Y));
   Simulation sim(s);
   const State& st = sim.state();
   HelResult r;
@@ -114,7 +116,8 @@ solid:
 // Uniaxial strain: yield at sigma_xx = HEL = (1-nu)/(1-2nu) Y, then sigma_xx - sigma_yy stays at -Y (compression).
 TEST(SolidPlasticity, UniaxialStrainLinearBulkReachesHel) {
   const double K = 1.6e11, G = 8.0e10, Y = 1.0e9;
-  auto r = uniaxial_strain(fmt::format("eos: {{type: linear_elastic, bulk_modulus: {}}}\n      density: 7800", K), G, Y, K);
+  auto r =
+      uniaxial_strain(fmt::format("eos: {{type: linear_elastic, bulk_modulus: {}}}\n      density: 7800", K), G, Y, K);
   std::printf("[ measured ] linear bulk: |sigma_xx| at yield %.5g Pa, HEL %.5g Pa (%.3f%%)\n", -r.sxx_at_yield, r.hel,
               100 * (-r.sxx_at_yield - r.hel) / r.hel);
   EXPECT_NEAR(-r.sxx_at_yield / r.hel, 1.0, 0.005);

@@ -14,8 +14,7 @@ namespace cosim::test {
 
 inline const std::filesystem::path& scratch_root() {
   struct Root {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("cosim_test_" + std::to_string(::getpid()));
+    std::filesystem::path path = std::filesystem::temp_directory_path() / ("cosim_test_" + std::to_string(::getpid()));
     ~Root() {
       const ::testing::UnitTest* ut = ::testing::UnitTest::GetInstance();
       if (ut && ut->Failed()) return;
