@@ -16,8 +16,8 @@
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/core/wall_faces.h"
-#include "fluid_solver/coupled/interface_samples.h"
-#include "fluid_solver/coupled/interface_surface.h"
+#include "fluid_solver/interface/interface_samples.h"
+#include "fluid_solver/interface/interface_surface.h"
 #include "fluid_solver/embedded/geometry.h"
 #include "fluid_solver/embedded/scene_bodies.h"
 
@@ -133,8 +133,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
     if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
       const coupling::FluidSamples smp =
-          coupled::sample_interface<DIM>(g_, geo_.category, *inner_, coupled::faces_of_surface(surface_));
-      wall_pressure_ = coupled::wall_pressure_slots(smp, smp.pressure);
+          interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
+      wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure);
     }
     inner_->set_embedded(
         to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),

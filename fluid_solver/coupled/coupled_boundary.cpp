@@ -6,13 +6,18 @@
 #include <stdexcept>
 
 #include "fluid_solver/core/embedded_bodies.h"
-#include "fluid_solver/coupled/interface_samples.h"
-#include "fluid_solver/coupled/interface_surface.h"
+#include "fluid_solver/interface/interface_samples.h"
+#include "fluid_solver/interface/interface_surface.h"
 #include "fluid_solver/embedded/geometry.h"
 
 namespace cosim::fluid::coupled {
 
 namespace {
+
+using interface::InterfaceSurface;
+using interface::sample_interface;
+using interface::surface_from_faces;
+using interface::wall_pressure_slots;
 
 template <int DIM>
 class CoupledBoundaryImpl final : public CoupledBoundary {

@@ -6,7 +6,7 @@
 
 #include "fluid_solver/core/scene.h"
 #include "fluid_solver/coupled/coupled_boundary.h"
-#include "fluid_solver/coupled/interface_surface.h"
+#include "fluid_solver/interface/interface_surface.h"
 
 using namespace cosim;
 using namespace cosim::fluid;
@@ -47,7 +47,7 @@ fluid:
 
 TEST(CoupledBoundary, FacesBecomeAnOrientedSurfacePlacedAtTheStartOfTheStep) {
   const auto f = box_faces_2d(0.5, 1.0, 0.25, 0.75, 2.0, -1.0);
-  const auto s = coupled::surface_from_faces(f, 2, 0.1);
+  const auto s = interface::surface_from_faces(f, 2, 0.1);
   ASSERT_EQ(s.surface.faces.size(), 4u);
   ASSERT_EQ(s.source_face, (std::vector<int>{0, 1, 2, 3}));
   for (int i = 0; i < 4; ++i) {
@@ -78,7 +78,7 @@ TEST(CoupledBoundary, QuadsBecomeTwoTrianglesWithTheFaceNormal) {
   f.velocity = {0, 0, 0};
   f.normal_stress = {0};
   f.impedance = {1e6};
-  const auto s = coupled::surface_from_faces(f, 3, 0.0);
+  const auto s = interface::surface_from_faces(f, 3, 0.0);
   ASSERT_EQ(s.surface.faces.size(), 2u);
   EXPECT_EQ(s.source_face, (std::vector<int>{0, 0}));
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(fluid::embedded::face_normal(s.surface, i)[0], 1.0, 1e-14);
@@ -88,15 +88,15 @@ TEST(CoupledBoundary, MalformedFacesAreRefusedWithTheField) {
   auto f = box_faces_2d(0.5, 1.0, 0.25, 0.75, 0, 0);
   f.face_vertex[3] = 17;
   try {
-    coupled::surface_from_faces(f, 2, 0.0);
+    interface::surface_from_faces(f, 2, 0.0);
     FAIL() << "accepted a vertex index out of range";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("face_vertex[3] = 17"), std::string::npos) << e.what();
   }
   f = box_faces_2d(0.5, 1.0, 0.25, 0.75, 0, 0);
-  EXPECT_THROW(coupled::surface_from_faces(f, 3, 0.0), std::invalid_argument);  // 2D faces, 3D grid
+  EXPECT_THROW(interface::surface_from_faces(f, 3, 0.0), std::invalid_argument);  // 2D faces, 3D grid
   f.area.pop_back();
-  EXPECT_THROW(coupled::surface_from_faces(f, 2, 0.0), std::invalid_argument);
+  EXPECT_THROW(interface::surface_from_faces(f, 2, 0.0), std::invalid_argument);
 }
 
 TEST(CoupledBoundary, SamplesReadTheFluidNextToEachFaceAndTheWallTakesUI) {

@@ -1,4 +1,4 @@
-#include "fluid_solver/coupled/interface_surface.h"
+#include "fluid_solver/interface/interface_surface.h"
 #include <limits>
 
 #include <fmt/format.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace cosim::fluid::coupled {
+namespace cosim::fluid::interface {
 
 using embedded::Vec3;
 using embedded::operator-;
@@ -135,4 +135,4 @@ coupling::Faces faces_of_surface(const embedded::Surface& s) {
   return f;
 }
 
-}  // namespace cosim::fluid::coupled
+}  // namespace cosim::fluid::interface

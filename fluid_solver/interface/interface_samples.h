@@ -22,7 +22,7 @@
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
 
-namespace cosim::fluid::coupled {
+namespace cosim::fluid::interface {
 
 struct SampleOptions {
   double min_flow_weight = 0.5;
@@ -153,4 +153,4 @@ inline std::vector<double> wall_pressure_slots(const coupling::FluidSamples& s, 
   return out;
 }
 
-}  // namespace cosim::fluid::coupled
+}  // namespace cosim::fluid::interface

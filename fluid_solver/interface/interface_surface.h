@@ -9,7 +9,7 @@
 #include "common/coupling/types.h"
 #include "fluid_solver/embedded/surface.h"
 
-namespace cosim::fluid::coupled {
+namespace cosim::fluid::interface {
 
 struct InterfaceSurface {
   embedded::Surface surface;
@@ -28,4 +28,4 @@ InterfaceSurface surface_from_faces(const coupling::Faces& faces, int dim, doubl
 // no vertex data): what sample_interface() reads, e.g. to sample next to the scene's own bodies.
 coupling::Faces faces_of_surface(const embedded::Surface& s);
 
-}  // namespace cosim::fluid::coupled
+}  // namespace cosim::fluid::interface
