@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
+#include "fluid_solver/embedded/domain_wall_faces.h"
 #include "fluid_solver/embedded/lattice.h"
-#include "fluid_solver/embedded/signed_distance.h"
 #include "fluid_solver/embedded/surface.h"
 
 namespace cosim::fluid::embedded {

@@ -13,6 +13,7 @@
 #include "fluid_solver/core/embedded_state.h"
 #include "fluid_solver/embedded/categorize.h"
 #include "fluid_solver/embedded/clip.h"
+#include "fluid_solver/embedded/domain_wall_faces.h"
 #include "fluid_solver/embedded/image_points.h"
 #include "fluid_solver/embedded/signed_distance.h"
 #include "fluid_solver/embedded/thin_body.h"
@@ -35,38 +36,6 @@ struct GeometryOptions {
   bool flat_face_prisms =
       true;  // faces inside a flat region scan only their prism (signed_distance.h); off: for benchmarks
 };
-
-// Faces of s that lie in a non-periodic boundary plane of the domain with their normal pointing out of it
-// (a piston filling a channel: its side faces on the channel walls). They give no interface segments and
-// reach only the lattice points on or beyond their plane (the ghost layers outside the domain): inside the
-// domain they would capture the ghost cells in the corner rows of the faces that do touch the fluid (a ghost as
-// close to the side face on the wall as to the end face was mirrored about the wall instead of the moving end
-// face: piston_2d at 40 x 8 was 2.5% off the reference, with the side faces outside the channel 0.1%).
-template <int DIM>
-DomainWallFaces domain_wall_faces(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& topo,
-                                  const std::array<bool, 3>& periodic) {
-  DomainWallFaces w;
-  w.code.assign(s.faces.size(), 0);
-  for (std::size_t d = 0; d < 3; ++d) {
-    w.lower[d] = g.lower[d];
-    w.upper[d] = g.lower[d] + g.n[d] * g.dx[d];
-    w.tol[d] = 1e-10 * g.dx[d];
-  }
-  const int nv = DIM == 1 ? 1 : DIM;
-  for (std::size_t f = 0; f < s.faces.size(); ++f)
-    for (std::size_t d = 0; d < static_cast<std::size_t>(DIM) && !w.code[f]; ++d) {
-      if (periodic[d]) continue;
-      const double nd = topo.face_normal[f][d];
-      bool on_lo = nd<-0.5, on_hi = nd> 0.5;
-      for (int k = 0; k < nv; ++k) {
-        const double x = s.vertices[static_cast<std::size_t>(s.faces[f][static_cast<std::size_t>(k)])][d];
-        on_lo = on_lo && std::abs(x - w.lower[d]) <= w.tol[d];
-        on_hi = on_hi && std::abs(x - w.upper[d]) <= w.tol[d];
-      }
-      if (on_lo || on_hi) w.code[f] = static_cast<signed char>(1 + 2 * d + (on_hi ? 1 : 0));
-    }
-  return w;
-}
 
 // Seconds spent per part in one build_geometry call.
 struct GeometryTiming {

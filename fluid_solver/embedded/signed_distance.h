@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fluid_solver/embedded/closest_point.h"
+#include "fluid_solver/embedded/domain_wall_faces.h"
 #include "fluid_solver/embedded/lattice.h"
 
 namespace cosim::fluid::embedded {
@@ -30,21 +31,6 @@ struct BandPoint {
   Vec3 normal{0, 0, 0};                 // unit, solid -> fluid: (x - closest)/phi, or the pseudo-normal when phi ~ 0
   std::array<double, 3> bary{0, 0, 0};  // of `closest` in `face`
   double d2 = 0;                        // squared distance (scatter minimum)
-};
-
-// Faces in a boundary plane of the domain (geometry.h: domain_wall_faces): code 0 for an ordinary face,
-// 1 + 2 d + side for a face on the lower (side 0) or upper (side 1) boundary of axis d.
-struct DomainWallFaces {
-  std::vector<signed char> code;
-  std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0}, tol{0, 0, 0};
-  bool skips(std::size_t f) const { return !code.empty() && code[f] != 0; }
-  // Whether face f may be the closest face of point x: ordinary faces always, wall faces only on or beyond
-  // their plane.
-  bool reaches(std::size_t f, const Vec3& x) const {
-    if (code.empty() || code[f] == 0) return true;
-    const auto d = static_cast<std::size_t>((code[f] - 1) / 2);
-    return (code[f] - 1) % 2 == 0 ? x[d] <= lower[d] + tol[d] : x[d] >= upper[d] - tol[d];
-  }
 };
 
 template <int DIM>
