@@ -98,6 +98,20 @@ const fs::path& run_once(const std::string& scene, const std::string& args = "")
   return runs[key] = dir;
 }
 
+// Two runs of this file's scenes (a: the reference, b: compared with it) and how far b's piston moved from a's.
+struct Comparison {
+  History a, b;
+  double worst = 0, travel = 0;  // trajectory_difference(a, b)
+};
+Comparison compare_runs(const std::string& scene_a, const std::string& args_a, const std::string& scene_b,
+                        const std::string& args_b) {
+  Comparison c{read_history(run_once(scene_a, args_a)), read_history(run_once(scene_b, args_b))};
+  const TrajectoryDifference d = trajectory_difference(c.a, c.b);
+  c.worst = d.worst;
+  c.travel = d.travel;
+  return c;
+}
+
 void print(const char* what, const Deviation& d) {
   std::printf(
       "[ measured ] %s: max deviation %.2f%% from the ODE, %.2f%% from the ODE with gas inertia, %.2f%% from "
@@ -131,14 +145,12 @@ TEST(CoupledPiston, HeavyPiston2DFollowsTheOdeAndTheConformingRun) {
 // The Python rigid piston (python/rigid_piston.py) in place of solid_solver gives the same trajectory.
 TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
   const std::string coarse = " --set fluid.mesh.cells=[40,8]";
-  const fs::path& cpp = run_once("piston_2d", coarse);
-  const fs::path& py =
-      run_once("piston_2d", coarse + " --solid-exe '/usr/bin/python3 " +
-                                (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string() + "'");
-  const History a = read_history(cpp), b = read_history(py);
+  const std::string python = coarse + " --solid-exe '/usr/bin/python3 " +
+                             (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string() + "'";
+  const auto [a, b, worst, travel] = compare_runs("piston_2d", coarse, "piston_2d", python);
   ASSERT_GT(b.size(), 1000u);
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
-  const double worst = trajectory_difference(a, b).worst;
+  const fs::path& py = run_once("piston_2d", python);
   std::printf("[ measured ] Python piston vs solid_solver: max |dx| = %.3e m over %zu cycles\n", worst, b.size());
   // 0.5% of the amplitude: the step sequences differ slightly, and the ghost cells in the corner rows, as far
   // from the piston's end face as from its side face on the channel wall, take either face's wall pressure
@@ -151,11 +163,9 @@ TEST(CoupledPiston, PythonRigidPistonReplacesSolidSolver) {
 // must follow the 2D one (first 30 ms: the piston's first stroke).
 TEST(CoupledPiston, Piston3DMatchesThe2DRun) {
   const std::string end = " --set coupling.time.end=0.03 --set coupling.output.interval=0.01";
-  const fs::path& d3 = run_once("piston_3d", end);
-  const fs::path& d2 = run_once("piston_2d", end + " --set fluid.mesh.cells=[40,8]");
-  const History a = read_history(d2), b = read_history(d3);
+  const auto [a, b, worst, travel] =
+      compare_runs("piston_2d", end + " --set fluid.mesh.cells=[40,8]", "piston_3d", end);
   ASSERT_GT(b.size(), 100u);
-  const auto [worst, travel] = trajectory_difference(a, b);
   std::printf("[ measured ] 3D vs 2D piston over 30 ms: max |dx| = %.3e m of %.3f m travel\n", worst, travel);
   EXPECT_GT(travel, 0.3);
   EXPECT_LT(worst, 0.01 * travel);
@@ -191,10 +201,8 @@ TEST(CoupledPiston, LightPistonSmoothWithImpedanceConditionsOnly) {
 TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
   const std::string end =
       " --set coupling.time.end=0.02 --set coupling.output.interval=0.01 --set coupling.mode=characteristic";
-  const fs::path& plain = run_once("piston_light_2d", end);
-  const fs::path& sub = run_once("piston_light_2d", end + " --set solid.numerics.max_subcycles=10");
-  const History a = read_history(plain), b = read_history(sub);
-  const auto [worst, travel] = trajectory_difference(a, b);
+  const auto [a, b, worst, travel] =
+      compare_runs("piston_light_2d", end, "piston_light_2d", end + " --set solid.numerics.max_subcycles=10");
   std::printf("[ measured ] sub-cycling: %zu coupled cycles instead of %zu, max |dx| = %.3e m of %.3f m travel\n",
               b.size(), a.size(), worst, travel);
   EXPECT_LT(b.size() * 3, a.size());
@@ -222,12 +230,12 @@ TEST(CoupledPiston, Piston1DWithThePythonPiston) {
 // error and the steps taken stay within 2% of the fluid's stable step.
 TEST(CoupledPiston, PipelinedCycleMatchesTheSequentialOne) {
   const std::string coarse = " --set fluid.mesh.cells=[40,8]";
-  const fs::path& pip = run_once("piston_2d", coarse);
-  const fs::path& seq = run_once("piston_2d", coarse + " --set coupling.scheme=sequential");
-  const History a = read_history(seq), b = read_history(pip);
+  const auto [a, b, worst, travel] =
+      compare_runs("piston_2d", coarse + " --set coupling.scheme=sequential", "piston_2d", coarse);
   ASSERT_GT(b.size(), 1000u);
   EXPECT_NEAR(b.t.back(), 0.37, 1e-12);
-  const auto [worst, travel] = trajectory_difference(a, b);
+  const fs::path &pip = run_once("piston_2d", coarse),
+                 &seq = run_once("piston_2d", coarse + " --set coupling.scheme=sequential");
   const std::string fluid_pip = read_text(pip / "fluid" / "summary.json"),
                     fluid_seq = read_text(seq / "fluid" / "summary.json");
   const auto number_after = [](const std::string& s, const std::string& key) {
@@ -248,8 +256,8 @@ TEST(CoupledPiston, PipelinedCycleMatchesTheSequentialOne) {
 }
 
 // The paper's scene itself: 3D, 40 x 8 x 8 background, three periods (about 40 s). The piston's side faces lie
-// on the channel walls; the geometry leaves such faces out inside the domain (embedded/geometry.h,
-// domain_wall_faces), or the corner ghost rows would be mirrored about the walls (5-7% off before).
+// on the channel walls; the geometry leaves such faces out inside the domain
+// (embedded/domain_wall_faces.h), or the corner ghost rows would be mirrored about the walls (5-7% off before).
 TEST(CoupledPiston, Piston3DAtThePapersResolutionFollowsTheReferences) {
   const fs::path& dir = run_once("piston_3d");
   const History h = read_history(dir);
