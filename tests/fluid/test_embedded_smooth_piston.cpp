@@ -155,12 +155,12 @@ TEST(EmbeddedSmoothPiston, ConvergenceWithFirstAndSecondOrderBoundary) {
     // 160 cells.
     EXPECT_LT(e[1][2], 0.5 * e[2][2]) << deg;
     // With it: more than first order over 40 -> 160 on both walls; the second-order face states are
-    // better than the first-order ones along the grid (by 1.5-2.2x) and within 30% of them at 30 degrees (measured up
+    // better than the first-order ones along the grid (by 1.5-2.2x) and within 20% of them at 30 degrees (measured up
     // to 1.18x: there the first-order errors cancel along the staircase, AcceleratingWallFirstAndSecondOrderBoundary).
     EXPECT_GT(observed_order(e[1][0], e[1][2], 4.0), 1.3) << deg;
     for (int r = 0; r < 3; ++r) {
       if (deg == 0.0) EXPECT_LT(e[1][r], e[0][r] / 1.4) << Ns[r];
-      else EXPECT_LT(e[1][r], 1.3 * e[0][r]) << Ns[r];
+      else EXPECT_LT(e[1][r], 1.2 * e[0][r]) << Ns[r];
     }
   }
 }
