@@ -61,6 +61,35 @@ fluid:
   return buf;
 }
 
+// The time step comes from the flow cells only: whatever the cells inside a body hold (here a state 100x
+// hotter and fast, set by an initial region that the body covers) does not change it.
+TEST(EmbeddedFlow, TimeStepIgnoresTheStatesInsideBodies) {
+  const std::string scene = R"(
+fluid:
+  mesh: {cells: [40, 40], lower: [0.0, 0.0], upper: [1.0, 1.0]}
+  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]
+  time: {end: 0.1}
+  embedded:
+    bodies:
+      - {shape: box, lower: [0.3, 0.3], upper: [0.7, 0.7]}
+  initial:
+    state: {rho: 1.0, velocity: [0.5, 0.0], p: 1.0}
+)";
+  const std::string hot = scene + R"(    regions:
+      - box: {lower: [0.4, 0.4], upper: [0.6, 0.6]}
+        state: {rho: 1.0, velocity: [30.0, 0.0], p: 100.0}
+)";
+  auto plain = make_simulation(parse_fluid_scene(scene));
+  auto covered = make_simulation(parse_fluid_scene(hot));
+  ASSERT_GT(plain->stable_dt(), 0.0);
+  EXPECT_EQ(covered->stable_dt(), plain->stable_dt());
+  // A region reaching into the flow does change it.
+  auto open =
+      make_simulation(parse_fluid_scene(scene + "    regions:\n      - box: {lower: [0.1, 0.1], upper: [0.2, 0.2]}\n   "
+                                                "     state: {rho: 1.0, velocity: [30.0, 0.0], p: 100.0}\n"));
+  EXPECT_LT(open->stable_dt(), 0.2 * plain->stable_dt());
+}
+
 // A uniform flow parallel to a wall at 30 degrees to the grid stays (nearly) uniform.
 TEST(EmbeddedFlow, UniformFlowParallelToAnAngledWall) {
   const double th = 30 * std::numbers::pi / 180.0, U = 0.5;
