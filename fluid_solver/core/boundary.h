@@ -1,6 +1,8 @@
-// Ghost cells of the primitive arrays from the boundary conditions of each side.
-// Only the ghost layers along each direction are filled (the dimension-by-dimension stencils
-// never read corner ghosts).
+// Ghost cells of the primitive arrays from the boundary conditions of each side. The directions are
+// filled one after the other, each over the ghost layers of the directions filled before it, so the
+// edge and corner ghosts hold valid states too: the flux stencils never read them, but the embedded
+// boundary's image-point and sampling stencils do where a body crosses the domain boundary (they read
+// zeros there before: a zero pressure in 3D image points).
 #pragma once
 
 #include <array>
@@ -46,9 +48,11 @@ class BoundaryFiller {
   void fill_side(FieldArray& W, int d, int side) const {
     const int n = g_.n[d];
     const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;  // the two other axes
+    // An axis filled before this one (e < d, active) is swept over its ghost layers as well.
+    const int g1 = e1 < d && e1 < DIM ? Grid<DIM>::NG : 0, g2 = e2 < d && e2 < DIM ? Grid<DIM>::NG : 0;
     const BoundaryKind kind = kind_[d][side];
-    for (int b = 0; b < g_.n[e2]; ++b)
-      for (int a = 0; a < g_.n[e1]; ++a)
+    for (int b = -g2; b < g_.n[e2] + g2; ++b)
+      for (int a = -g1; a < g_.n[e1] + g1; ++a)
         for (int layer = 1; layer <= Grid<DIM>::NG; ++layer) {
           const int ghost = side == 0 ? -layer : n - 1 + layer;
           int src = 0;
