@@ -119,18 +119,24 @@ void print(const char* what, const Deviation& d) {
       what, 100 * d.plain, 100 * d.inertia, 100 * d.conforming);
 }
 
+// A full run (three periods, t = 0.37 s) of `scene` and its deviation from the references, printed as `label`.
+Deviation full_run_deviation(const std::string& scene, const std::string& args, const char* label) {
+  const History h = read_history(run_once(scene, args));
+  EXPECT_GT(h.size(), 1000u) << label;
+  EXPECT_NEAR(h.t.empty() ? 0.0 : h.t.back(), 0.37, 1e-12) << label;
+  const Deviation d = h.size() > 1 ? piston_deviation(h, 0.37) : Deviation{1, 1, 1};
+  print(label, d);
+  return d;
+}
+
 }  // namespace
 
 // Density ratio 100, impedance conditions, 160 x 8 background, three periods, both boundary orders.
 TEST(CoupledPiston, HeavyPiston2DFollowsTheOdeAndTheConformingRun) {
-  const fs::path& dir = run_once("piston_2d");
-  const History h = read_history(dir);
-  ASSERT_GT(h.size(), 1000u);
-  EXPECT_NEAR(h.t.back(), 0.37, 1e-12);
-  const Deviation d = piston_deviation(h, 0.37);
-  print("piston_2d (impedance, boundary order 2)", d);
-  const Deviation d1 = piston_deviation(read_history(run_once("piston_2d", "--set fluid.embedded.order=1")), 0.37);
-  print("piston_2d (impedance, boundary order 1)", d1);
+  const Deviation d = full_run_deviation("piston_2d", "", "piston_2d (impedance, boundary order 2)");
+  const Deviation d1 =
+      full_run_deviation("piston_2d", "--set fluid.embedded.order=1", "piston_2d (impedance, boundary order 1)");
+  const History h = read_history(run_once("piston_2d"));
   // The plain ODE neglects the gas (3% of the piston mass): the conforming run itself is 4.3% away from it.
   // Against the references that include the gas inertia: within 0.5%, and the second-order boundary closer.
   EXPECT_LT(d.plain, 0.05);
@@ -213,12 +219,7 @@ TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
 // The 1D equivalent (configs/piston_1d.yaml): a 1D fluid grid whose embedded boundary is the two end points
 // sent by the Python rigid piston (the scene's launcher: solid program), against the same references.
 TEST(CoupledPiston, Piston1DWithThePythonPiston) {
-  const fs::path& dir = run_once("piston_1d");
-  const History h = read_history(dir);
-  ASSERT_GT(h.size(), 1000u);
-  EXPECT_NEAR(h.t.back(), 0.37, 1e-12);
-  const Deviation d = piston_deviation(h, 0.37);
-  print("piston_1d (impedance, boundary order 2, 160 cells)", d);
+  const Deviation d = full_run_deviation("piston_1d", "", "piston_1d (impedance, boundary order 2, 160 cells)");
   EXPECT_LT(d.plain, 0.05);
   EXPECT_LT(d.inertia, 0.005);
   EXPECT_LT(d.conforming, 0.005);
@@ -259,12 +260,7 @@ TEST(CoupledPiston, PipelinedCycleMatchesTheSequentialOne) {
 // on the channel walls; the geometry leaves such faces out inside the domain
 // (embedded/domain_wall_faces.h), or the corner ghost rows would be mirrored about the walls (5-7% off before).
 TEST(CoupledPiston, Piston3DAtThePapersResolutionFollowsTheReferences) {
-  const fs::path& dir = run_once("piston_3d");
-  const History h = read_history(dir);
-  ASSERT_GT(h.size(), 1000u);
-  EXPECT_NEAR(h.t.back(), 0.37, 1e-12);
-  const Deviation d = piston_deviation(h, 0.37);
-  print("piston_3d (40 x 8 x 8, impedance, boundary order 2)", d);
+  const Deviation d = full_run_deviation("piston_3d", "", "piston_3d (40 x 8 x 8, impedance, boundary order 2)");
   EXPECT_LT(d.plain, 0.05);  // the gas inertia alone: 4.3%
   EXPECT_LT(d.inertia, 0.01);
   EXPECT_LT(d.conforming, 0.01);
