@@ -309,11 +309,12 @@ fs::path SnapshotSeries::xdmf_path() const { return dir_ / (basename_ + ".xmf");
 
 std::string SnapshotSeries::file_name(std::size_t index) const { return fmt::format("{}_{:06}.h5", basename_, index); }
 
-void SnapshotSeries::check_directory() const {
+void SnapshotSeries::prepare_directory() const {
   std::error_code ec;
   if (!fs::is_directory(dir_, ec)) {
     throw std::runtime_error(fmt::format("snapshot: output directory '{}' does not exist", dir_.string()));
   }
+  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
 }
 
 fs::path SnapshotSeries::write(double time, std::int64_t step, const UniformGrid& g,
@@ -321,8 +322,7 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const UniformGrid
   check_time(time);
   check_fields(fields);
   const UniformGrid grid = normalized(g);
-  check_directory();
-  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
+  prepare_directory();
   const std::string name = file_name(count());
   std::string body = uniform_grid_xml(grid);
   write_hdf5_atomically(dir_ / name, [&](Hdf5File& h5) {
@@ -338,8 +338,7 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const Unstructure
   check_time(time);
   check_fields(fields);
   check_unstructured(g);
-  check_directory();
-  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
+  prepare_directory();
   const std::string name = file_name(count());
   std::string body = unstructured_grid_xml(g, name);
   write_hdf5_atomically(dir_ / name, [&](Hdf5File& h5) {

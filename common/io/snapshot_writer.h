@@ -96,7 +96,8 @@ class SnapshotSeries {
 
  private:
   std::string file_name(std::size_t index) const;
-  void check_directory() const;
+  // Throws if the directory is missing; before the first snapshot, removes an earlier run's series there.
+  void prepare_directory() const;
   std::filesystem::path publish(const std::string& file_name, std::string grid_xml);
 
   std::filesystem::path dir_;
