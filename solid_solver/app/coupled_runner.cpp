@@ -14,6 +14,7 @@
 #include "solid_solver/app/run_summary.h"
 #include "solid_solver/app/runner.h"
 #include "solid_solver/coupled/interface_faces.h"
+#include "solid_solver/io/block_history.h"
 #include "solid_solver/io/solid_output.h"
 
 namespace cosim::solid {
@@ -31,6 +32,8 @@ int run_solid_coupled(const RunOptions& opt) {
                sim->mesh().num_elements, sim->boundary_faces().count, opt.coupler);
 
   io::SnapshotSeries series(opt.out_dir, "solid");
+  BlockHistory history(opt.out_dir);
+  long cycles = 0;
   RunRecord rec;
   rec.start = sim->energy();
   double solver_seconds = 0;
@@ -71,9 +74,11 @@ int run_solid_coupled(const RunOptions& opt) {
     apply_velocity = client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
     if (apply_velocity) sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
     last = st;
+    if (scene.history_every > 0 && ++cycles % scene.history_every == 0) history.record(*sim);
   };
   const auto output = [&](const coupling::Directive&) {
     if (scene.write_snapshots) write_snapshot(series, *sim);
+    history.record(*sim);
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output);
   rec.status = res.status;

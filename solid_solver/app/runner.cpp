@@ -13,6 +13,7 @@
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
 #include "solid_solver/app/run_summary.h"
+#include "solid_solver/io/block_history.h"
 #include "solid_solver/io/solid_output.h"
 
 namespace cosim::solid {
@@ -85,8 +86,22 @@ int run_solid(const RunOptions& opt) {
 
   app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "solid");
+  BlockHistory history(opt.out_dir);
   RunRecord rec;
   rec.start = sim->energy();
+  // The time loop sees the simulation through this adapter: a block-history row every history_every steps.
+  struct WithHistory {
+    Simulation& sim;
+    BlockHistory& history;
+    int every;
+    double stable_dt() const { return sim.stable_dt(); }
+    double time() const { return sim.time(); }
+    long steps() const { return sim.steps(); }
+    void advance(double dt) {
+      sim.advance(dt);
+      if (every > 0 && sim.steps() % every == 0) history.record(sim);
+    }
+  } stepped{*sim, history, scene.history_every};
   app::DriveOptions drive_opt{scene.output_times,
                               scene.t_end,
                               scene.max_steps,
@@ -94,8 +109,9 @@ int run_solid(const RunOptions& opt) {
                               static_cast<double>(sim->mesh().num_elements),
                               "Mzone-cycles/s",
                               opt.quiet};
-  const app::DriveResult res = app::drive(*sim, drive_opt, [&] {
+  const app::DriveResult res = app::drive(stepped, drive_opt, [&] {
     if (scene.write_snapshots) write_snapshot(series, *sim);
+    history.record(*sim);
   });
   rec.status = res.status;
   rec.error = res.error;

@@ -329,6 +329,7 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     s.output_times = config::read_output_times(out ? &*out : nullptr, s.t_end);
     if (out) {
       s.write_snapshots = out->get<bool>("snapshots", true);
+      s.history_every = out->get<int>("history_every", 0, config::int_at_least(0));
       out->finish();
     }
   }

@@ -78,6 +78,8 @@ struct SolidScene {
   long max_steps = 100000000L;
   std::vector<double> output_times;  // always ends with t_end
   bool write_snapshots = true;
+  // Rows of block_history.csv also every this many steps (standalone) or coupled cycles; 0: at outputs only.
+  int history_every = 0;
   int threads = 0;
 };
 

@@ -67,6 +67,7 @@ void Simulation::setup() {
   st_.c.assign(ne, 0.0);
   st_.s.assign(static_cast<std::size_t>(ne) * 6, 0.0);
   st_.eps_p.assign(ne, 0.0);
+  st_.w_p.assign(ne, 0.0);
   st_.fc.assign(static_cast<std::size_t>(ne) * N * D, 0.0);
 
   // Element mass, energy, deviator; nodal mass (lumped: M/npe per corner) and velocity
@@ -417,6 +418,7 @@ void Simulation::element_update(double dt) {
                     st_.c.data(),
                     st_.s.data(),
                     st_.eps_p.data(),
+                    st_.w_p.data(),
                     st_.fc.data(),
                     dt,
                     scene_.numerics.q_quadratic * scene_.numerics.q_quadratic,

@@ -38,6 +38,7 @@ struct State {
   std::vector<double> c;      // sound speed used for the step (longitudinal with strength) [m/s]
   std::vector<double> s;      // deviatoric stress, 6 per element (xx, yy, zz, xy, yz, zx) [Pa]
   std::vector<double> eps_p;  // equivalent plastic strain [-]
+  std::vector<double> w_p;    // plastic work done in the element since t = 0 [J]
   std::vector<double> fc;     // corner forces, npe*dim per element [N]
 };
 

@@ -39,6 +39,7 @@ struct ElementPassArgs {
   double* c;
   double* s;
   double* eps_p;
+  double* w_p;
   double* fc;
   double dt;
   double cq2, cl, kappa, p_min;
@@ -107,8 +108,11 @@ void element_pass(const ElementPassArgs& A, const Eos& eos, int begin, int end, 
       divv = L[0][0] + L[1][1] + L[2][2];
       double* sp = A.s + static_cast<std::ptrdiff_t>(z) * 6;
       for (int k = 0; k < 6; ++k) sz[k] = sp[k];
-      A.eps_p[z] += update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress, A.strength.hardening,
-                                    A.eps_p[z], sz);
+      const double deps = update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress,
+                                          A.strength.hardening, A.eps_p[z], sz);
+      A.eps_p[z] += deps;
+      // Plastic work sigma_eq d eps_p V; after the return sigma_eq = Y0 + H eps_p (J2 flow).
+      A.w_p[z] += (A.strength.yield_stress + A.strength.hardening * A.eps_p[z]) * deps * Vm;
       for (int k = 0; k < 6; ++k) sp[k] = sz[k];
     } else if (dt > 0.0) {
       divv = (V - Vold) / (dt * 0.5 * (V + Vold));
