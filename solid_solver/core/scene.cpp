@@ -138,9 +138,20 @@ BlockSpec read_block(Node& b, int dim) {
 
 BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) {
   BoundarySpec b;
-  known_keys(n, {"set", "type", "vx", "vy", "vz", "value", "ramp"});
-  b.set = n.require<std::string>("set");
-  if (!sets.count(b.set)) {
+  known_keys(n, {"set", "box", "type", "vx", "vy", "vz", "value", "ramp"});
+  if (n.has("box") == n.has("set")) n.fail("set", "either set: NAME (a boundary set) or box: {lower, upper} (nodes)");
+  if (auto box = n.optional_child("box")) {
+    known_keys(*box, {"lower", "upper"});
+    b.node_box = true;
+    b.lower = read_point(*box, "lower", dim);
+    b.upper = read_point(*box, "upper", dim);
+    for (int d = 0; d < dim; ++d)
+      if (!(b.upper[d] >= b.lower[d])) box->fail("upper", "upper >= lower in every direction");
+    box->finish();
+  } else {
+    b.set = n.require<std::string>("set");
+  }
+  if (!b.node_box && !sets.count(b.set)) {
     std::string list;
     for (auto& s : sets) list += (list.empty() ? "" : ", ") + s;
     std::string hint = config::closest(b.set, sets);
@@ -148,7 +159,9 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
                       ", got '" + b.set + "'");
   }
   const std::string type =
-      n.require<std::string>("type", config::one_of({"fixed", "symmetry", "velocity", "pressure"}));
+      n.require<std::string>("type", config::one_of({"fixed", "symmetry", "velocity", "pressure", "non_reflecting"}));
+  if (b.node_box && type != "fixed" && type != "velocity")
+    n.fail("type", "fixed or velocity with a node box (pressure, non_reflecting and symmetry need a face set)");
   if (type == "fixed") b.kind = BcKind::Fixed;
   else if (type == "symmetry") b.kind = BcKind::Symmetry;
   else if (type == "velocity") {
@@ -163,9 +176,12 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
     }
     if (!b.component[0] && !b.component[1] && !b.component[2])
       n.fail("vx", "at least one prescribed velocity component vx, vy or vz [m/s]");
-  } else {
+  } else if (type == "pressure") {
     b.kind = BcKind::Pressure;
     b.pressure = n.require<double>("value");
+  } else {
+    b.kind = BcKind::NonReflecting;
+    b.pressure = n.get<double>("value", 0.0);  // the ambient pressure [Pa]
   }
   b.ramp = n.get<double>("ramp", 0.0, config::non_negative());
   n.finish();
@@ -226,15 +242,23 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
   }
   for (auto& rn : region_nodes) {
     RegionSpec r;
-    known_keys(rn, {"block", "lower", "upper"});
+    known_keys(rn, {"block", "lower", "upper", "center", "radius"});
     r.block = rn.require<std::string>("block");
     if (!names.count(r.block)) {
       std::string hint = config::closest(r.block, names);
       rn.fail("block", "the name of a block in solid.blocks" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
                            ", got '" + r.block + "'");
     }
-    r.lower = read_point(rn, "lower", s.dim);
-    r.upper = read_point(rn, "upper", s.dim);
+    r.sphere = rn.has("center") || rn.has("radius");
+    if (r.sphere) {
+      if (rn.has("lower") || rn.has("upper"))
+        rn.fail("center", "either lower/upper (a box) or center/radius (a sphere)");
+      r.center = read_point(rn, "center", s.dim);
+      r.radius = rn.require<double>("radius", config::positive());
+    } else {
+      r.lower = read_point(rn, "lower", s.dim);
+      r.upper = read_point(rn, "upper", s.dim);
+    }
     rn.finish();
     s.regions.push_back(r);
   }

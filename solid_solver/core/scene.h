@@ -26,15 +26,31 @@ struct BlockSpec {
   std::array<double, 6> deviator{0, 0, 0, 0, 0, 0};  // initial deviatoric stress (xx,yy,zz,xy,yz,zx) [Pa]
 };
 
-struct RegionSpec {  // elements whose centroid lies in [lower, upper] belong to `block`
+struct RegionSpec {  // elements whose centroid lies in [lower, upper] (or the sphere) belong to `block`
   std::string block;
   std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0};
+  bool sphere = false;  // a circle (2D) / sphere (3D) of `radius` about `center` instead of the box
+  std::array<double, 3> center{0, 0, 0};
+  double radius = 0.0;
+  bool contains(const std::array<double, 3>& c, int dim) const {
+    double r2 = 0;
+    bool in = true;
+    for (int d = 0; d < dim; ++d) {
+      in = in && c[d] >= lower[d] && c[d] <= upper[d];
+      r2 += (c[d] - center[d]) * (c[d] - center[d]);
+    }
+    return sphere ? r2 <= radius * radius : in;
+  }
 };
 
-enum class BcKind { Fixed, Symmetry, Velocity, Pressure };
+// NonReflecting: the first-order absorbing condition of a free field (Lysmer and Kuhlemeyer 1969): the face
+// pressure p_ambient + rho c v.n of the element behind it, so that a plane wave leaving normally is not sent back.
+enum class BcKind { Fixed, Symmetry, Velocity, Pressure, NonReflecting };
 
 struct BoundarySpec {
-  std::string set;
+  std::string set;        // a face/node set of the mesh, or empty with a node box
+  bool node_box = false;  // Fixed/Velocity: the nodes in [lower, upper] (e.g. a clamped edge inside the mesh)
+  std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0};
   BcKind kind = BcKind::Fixed;
   std::array<bool, 3> component{false, false, false};  // Velocity: which components are prescribed
   std::array<double, 3> velocity{0, 0, 0};             // [m/s]

@@ -25,9 +25,7 @@ Mesh build_mesh(const SolidScene& s) {
   for (int e = 0; e < m.num_elements; ++e) {
     const auto c = element_centroid(m, m.x0, e);
     for (const auto& r : s.regions) {
-      bool in = true;
-      for (int d = 0; d < s.dim; ++d) in = in && c[d] >= r.lower[d] && c[d] <= r.upper[d];
-      if (!in) continue;
+      if (!r.contains(c, s.dim)) continue;
       for (std::size_t b = 0; b < s.blocks.size(); ++b)
         if (s.blocks[b].name == r.block) m.element_block[e] = static_cast<int>(b);
     }
@@ -160,16 +158,31 @@ void Simulation::setup() {
 
   // Boundary conditions.
   for (const auto& bc : scene_.boundaries) {
-    if (bc.kind == BcKind::Pressure) {
+    if (bc.kind == BcKind::Pressure || bc.kind == BcKind::NonReflecting) {
       auto it = mesh_.face_sets.find(bc.set);
       if (it == mesh_.face_sets.end()) throw std::runtime_error("no face set '" + bc.set + "' in the mesh");
-      loads_.push_back({&it->second, bc.pressure, bc.ramp});
+      loads_.push_back({&it->second, bc.pressure, bc.ramp, bc.kind == BcKind::NonReflecting});
       for (const auto& f : it->second)
         for (int q = 0; q < mesh_.face_nodes(); ++q) st_.bc_mask[f.nodes[q]] |= kBcLoaded;
       continue;
     }
-    auto it = mesh_.node_sets.find(bc.set);
-    if (it == mesh_.node_sets.end()) throw std::runtime_error("no node set '" + bc.set + "' in the mesh");
+    std::vector<int> box_nodes;
+    if (bc.node_box) {
+      for (int n = 0; n < mesh_.num_nodes; ++n) {
+        bool in = true;
+        for (int d = 0; d < D; ++d) {
+          const double xd = mesh_.x0[static_cast<std::size_t>(n) * D + d];
+          const double tol = 1e-9 * (1.0 + std::abs(bc.upper[d] - bc.lower[d]));
+          in = in && xd >= bc.lower[d] - tol && xd <= bc.upper[d] + tol;
+        }
+        if (in) box_nodes.push_back(n);
+      }
+      if (box_nodes.empty()) throw std::runtime_error("a boundary node box holds no node of the mesh");
+    }
+    auto it = bc.node_box ? mesh_.node_sets.end() : mesh_.node_sets.find(bc.set);
+    if (!bc.node_box && it == mesh_.node_sets.end())
+      throw std::runtime_error("no node set '" + bc.set + "' in the mesh");
+    const std::vector<int>& nodes = bc.node_box ? box_nodes : it->second;
     int axis = -1;
     if (bc.kind == BcKind::Symmetry) {
       const auto fs = mesh_.face_sets.find(bc.set);
@@ -180,7 +193,7 @@ void Simulation::setup() {
                         "axis-aligned symmetry planes are supported)",
                         bc.set));
     }
-    for (int n : it->second) {
+    for (int n : nodes) {
       for (int d = 0; d < D; ++d) {
         bool on = false;
         double val = 0.0;
@@ -242,10 +255,12 @@ void Simulation::apply_pressure_loads() {
   const double* x = st_.x.data();
   const int k = mesh_.face_nodes();
   for (const auto& L : loads_) {
-    const double p = L.pressure * (L.ramp > 0 ? std::min(1.0, t_ / L.ramp) : 1.0);
+    const double p0 = L.pressure * (L.ramp > 0 ? std::min(1.0, t_ / L.ramp) : 1.0);
     for (const auto& f : *L.faces) {
       double an[3];
       face_area_vector(D, x, f.nodes, an);
+      double p = p0;
+      if (L.absorbing) p += absorbing_pressure(f, an);
       for (int q = 0; q < k; ++q)
         for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(f.nodes[q]) * D + d] -= p / k * an[d];
     }
@@ -260,6 +275,21 @@ void Simulation::apply_pressure_loads() {
     for (int q = 0; q < k; ++q)
       for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(fn[q]) * D + d] -= w * an[d];
   }
+}
+
+// rho c (v . n) of a non-reflecting face: the face's mean velocity (v^{n-1/2}) along its unit outward normal,
+// times the impedance of the element behind it.
+double Simulation::absorbing_pressure(const BoundaryFace& f, const double* an) const {
+  const int D = mesh_.dim, k = mesh_.face_nodes();
+  double vn = 0, a2 = 0;
+  for (int d = 0; d < D; ++d) {
+    double vd = 0;
+    for (int q = 0; q < k; ++q) vd += st_.v[static_cast<std::size_t>(f.nodes[q]) * D + d] / k;
+    vn += vd * an[d];
+    a2 += an[d] * an[d];
+  }
+  const int e = f.element;
+  return a2 > 0 ? st_.emass[e] / st_.vol[e] * st_.c[e] * vn / std::sqrt(a2) : 0.0;
 }
 
 const BoundaryFaces& Simulation::boundary_faces() {

@@ -70,6 +70,7 @@ class Simulation {
   void setup();
   void apply_boundary_conditions();
   void apply_pressure_loads();
+  double absorbing_pressure(const BoundaryFace& f, const double* an) const;
 
   SolidScene scene_;
   Mesh mesh_;
@@ -80,6 +81,7 @@ class Simulation {
   struct Load {
     const std::vector<BoundaryFace>* faces;
     double pressure, ramp;
+    bool absorbing = false;  // NonReflecting: + rho c v.n of the face's element
   };
   std::vector<Load> loads_;
   std::vector<RigidBody> rigid_;
