@@ -40,8 +40,16 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   const double e0 = rec.start.total();
   j["energy"] = {{"start", energy_json(rec.start)},
                  {"end", energy_json(e)},
-                 {"balance_error", e.total() - e0 - e.boundary_work},
-                 {"relative_balance_error", e0 != 0 ? (e.total() - e0 - e.boundary_work) / std::abs(e0) : 0.0}};
+                 {"balance_error", e.total() - e0 - e.sources()},
+                 {"relative_balance_error", e0 != 0 ? (e.total() - e0 - e.sources()) / std::abs(e0) : 0.0}};
+  if (!s.ale.blocks.empty()) {
+    const RemapFlux& f = sim.ale_flux();
+    j["ale"] = {{"blocks", s.ale.blocks},
+                {"inflow_mass", f.mass},
+                {"inflow_energy", f.energy},
+                {"inflow_momentum", std::vector<double>(f.momentum, f.momentum + s.dim)},
+                {"kinetic_to_internal", f.kinetic_to_internal}};
+  }
   // Rigid blocks: final centre of mass and velocity (e.g. the piston position of solid_piston_1d).
   for (const auto& rb : sim.rigid_bodies()) {
     const int D = s.dim;
@@ -130,7 +138,7 @@ int run_solid(const RunOptions& opt) {
         "(relative), {} snapshot(s) in {}",
         sim->time(), sim->steps(), rec.wall,
         rec.wall > 0 ? 1e-6 * sim->steps() * sim->mesh().num_elements / rec.wall : 0.0,
-        rec.start.total() != 0 ? (e.total() - rec.start.total() - e.boundary_work) / std::abs(rec.start.total()) : 0.0,
+        rec.start.total() != 0 ? (e.total() - rec.start.total() - e.sources()) / std::abs(rec.start.total()) : 0.0,
         series.count(), opt.out_dir.string());
   }
   return code;

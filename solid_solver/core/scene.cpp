@@ -193,7 +193,7 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
 SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
   SolidScene s;
   Node sn = root.child("solid");
-  known_keys(sn, {"mesh", "blocks", "boundaries", "initial", "numerics", "time", "output", "threads"});
+  known_keys(sn, {"mesh", "blocks", "boundaries", "initial", "numerics", "ale", "time", "output", "threads"});
 
   Node mesh = sn.child("mesh");
   known_keys(mesh, {"type", "cells", "lower", "upper", "regions", "file"});
@@ -336,6 +336,26 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     nu.dt_min = num->get<double>("dt_min", nu.dt_min, config::non_negative());
     nu.max_subcycles = num->get<int>("max_subcycles", nu.max_subcycles, config::int_at_least(1));
     num->finish();
+  }
+
+  if (auto ale = sn.optional_child("ale")) {
+    known_keys(*ale, {"blocks", "every", "sweeps"});
+    for (auto& bn : ale->list("blocks")) {
+      const std::string name = bn.as<std::string>();
+      auto it = std::find_if(s.blocks.begin(), s.blocks.end(), [&](const BlockSpec& b) { return b.name == name; });
+      if (it == s.blocks.end()) {
+        std::string hint = config::closest(name, names);
+        ale->fail("blocks", "names of blocks in solid.blocks" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
+                                ", got '" + name + "'");
+      }
+      if (it->rigid || !it->has_eos || it->material.strength.enabled)
+        ale->fail("blocks", "gas blocks (an eos, no strength, not rigid) for ALE relaxation, got '" + name + "'");
+      s.ale.blocks.push_back(name);
+    }
+    if (s.ale.blocks.empty()) ale->fail("blocks", "at least one block name");
+    s.ale.every = ale->get<int>("every", 1, config::int_at_least(1));
+    s.ale.sweeps = ale->get<int>("sweeps", 4, config::int_at_least(0));
+    ale->finish();
   }
 
   // In a coupled scene the coupler owns time (coupling.time); the solid's time: is then optional.

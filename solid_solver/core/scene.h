@@ -76,6 +76,13 @@ struct Numerics {
                              // pressure held (1: the solid's stable step limits the coupled step)
 };
 
+// ALE gas blocks (solid_solver/ale/): Lagrange + rezone + remap every `every` steps.
+struct AleSpec {
+  std::vector<std::string> blocks;  // relaxed blocks (gas: an eos, no strength, not rigid); empty: no ALE
+  int every = 1;                    // steps between remaps
+  int sweeps = 4;                   // Jacobi sweeps of the mesh Laplacian per rezone
+};
+
 struct SolidScene {
   std::string name = "scene";
   int dim = 3;
@@ -90,6 +97,7 @@ struct SolidScene {
   std::vector<BoundarySpec> boundaries;
   std::vector<DepositSpec> deposits;
   Numerics numerics;
+  AleSpec ale;
   double t_end = 0.0;
   long max_steps = 100000000L;
   std::vector<double> output_times;  // always ends with t_end

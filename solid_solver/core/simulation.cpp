@@ -1,5 +1,7 @@
 #include "solid_solver/core/simulation.h"
 
+#include "solid_solver/ale/rezone.h"
+
 #include <Eigen/Dense>
 
 #include <fmt/format.h>
@@ -222,6 +224,15 @@ void Simulation::setup() {
     if (!scene_.blocks[b].rigid) continue;
     rigid_.push_back(make_rigid_body(mesh_, static_cast<int>(b), st_, rigid_owner));
     for (int z = mesh_.block_range[b][0]; z < mesh_.block_range[b][1]; ++z) rigid_ie_ += st_.ie[z];
+  }
+
+  // ALE gas blocks: the relaxed nodes and the faces they exchange through.
+  if (!scene_.ale.blocks.empty()) {
+    std::vector<char> relaxed(scene_.blocks.size(), 0);
+    for (std::size_t b = 0; b < scene_.blocks.size(); ++b)
+      for (const auto& name : scene_.ale.blocks) relaxed[b] |= scene_.blocks[b].name == name;
+    ale_ = std::make_unique<AleMesh>(make_ale_mesh(mesh_, relaxed));
+    ale_disp_.assign(st_.x.size(), 0.0);
   }
 
   // Initial element pass: stress, EOS, viscosity, corner forces and the stable step at t = 0.
@@ -502,6 +513,7 @@ void Simulation::element_update(double dt) {
 void Simulation::advance(double dt) {
   nodal_update(dt);
   element_update(dt);
+  if (ale_ && (steps_ + 1) % scene_.ale.every == 0) ale_step();
   t_ += dt;
   last_dt_ = dt;
   ++steps_;
@@ -517,7 +529,26 @@ double Simulation::stable_dt() const {
   return dt;
 }
 
-EnergyBudget Simulation::energy() const { return {ie_sum_, ke_, wb_}; }
+EnergyBudget Simulation::energy() const { return {ie_sum_, ke_, wb_, ale_total_.energy}; }
+
+// ALE: rezone the relaxed nodes, remap the state onto the new mesh, and recompute the element state and corner
+// forces there (an element update without a time step); the kinetic energy is that of the remapped velocities.
+void Simulation::ale_step() {
+  ale_x_lag_ = st_.x;
+  rezone(mesh_, *ale_, scene_.ale.sweeps, ale_disp_, st_.x);
+  const RemapFlux f = remap(mesh_, *ale_, ale_x_lag_, st_);
+  ale_total_.mass += f.mass;
+  ale_total_.energy += f.energy;
+  for (int d = 0; d < 3; ++d) ale_total_.momentum[d] += f.momentum[d];
+  ale_total_.kinetic_to_internal += f.kinetic_to_internal;
+  element_update(0.0);
+  const int D = mesh_.dim;
+  ke_ = 0.0;
+  for (int n = 0; n < mesh_.num_nodes; ++n)
+    for (int d = 0; d < D; ++d)
+      ke_ +=
+          0.5 * st_.mass[n] * st_.v[static_cast<std::size_t>(n) * D + d] * st_.v[static_cast<std::size_t>(n) * D + d];
+}
 
 double Simulation::bytes_per_element() const {
   const double ne = mesh_.num_elements, nn = mesh_.num_nodes, D = mesh_.dim, N = mesh_.npe;

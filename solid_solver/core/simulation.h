@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "solid_solver/ale/ale_mesh.h"
+#include "solid_solver/ale/remap.h"
 #include "solid_solver/core/boundary_faces.h"
 #include "solid_solver/core/rigid_body.h"
 #include "solid_solver/core/scene.h"
@@ -22,7 +24,10 @@ struct EnergyBudget {
   double internal = 0.0;       // [J]
   double kinetic = 0.0;        // [J], with v^{n-1/2}
   double boundary_work = 0.0;  // work done on the body by boundary forces since t = 0 [J]
+  double ale_inflow = 0.0;     // energy that came in through the exterior of ALE blocks since t = 0 [J]
   double total() const { return internal + kinetic; }
+  // What the energy must be from the start: start + boundary work + ALE inflow.
+  double sources() const { return boundary_work + ale_inflow; }
 };
 
 class Simulation {
@@ -61,6 +66,8 @@ class Simulation {
   // change: a flat face sets the normal component, a corner the whole vector). Rigid-block nodes and fixed
   // components are left alone. The kinetic-energy change is counted as boundary work. Used once.
   void set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted);
+  // Through the exterior of the ALE blocks since t = 0 (inflow positive) and the kinetic energy turned into heat.
+  const RemapFlux& ale_flux() const { return ale_total_; }
   // Rigid blocks (blocks[].rigid), in block order.
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_; }
   // Bytes of state per element (nodal arrays apportioned), for the benchmark report.
@@ -70,6 +77,7 @@ class Simulation {
   void setup();
   void apply_boundary_conditions();
   void apply_pressure_loads();
+  void ale_step();
   double absorbing_pressure(const BoundaryFace& f, const double* an) const;
 
   SolidScene scene_;
@@ -84,6 +92,9 @@ class Simulation {
     bool absorbing = false;  // NonReflecting: + rho c v.n of the face's element
   };
   std::vector<Load> loads_;
+  std::unique_ptr<AleMesh> ale_;
+  std::vector<double> ale_disp_, ale_x_lag_;
+  RemapFlux ale_total_;  // accumulated over the run
   std::vector<RigidBody> rigid_;
   BoundaryFaces faces_;
   bool faces_built_ = false;

@@ -44,7 +44,11 @@ void write_snapshot(io::SnapshotSeries& series, const Simulation& sim) {
 }
 
 nlohmann::json energy_json(const EnergyBudget& e) {
-  return {{"internal", e.internal}, {"kinetic", e.kinetic}, {"total", e.total()}, {"boundary_work", e.boundary_work}};
+  return {{"internal", e.internal},
+          {"kinetic", e.kinetic},
+          {"total", e.total()},
+          {"boundary_work", e.boundary_work},
+          {"ale_inflow", e.ale_inflow}};
 }
 
 }  // namespace cosim::solid
