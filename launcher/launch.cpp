@@ -169,6 +169,9 @@ int run(const LaunchOptions& opt) {
   // message steal the cores the other processes need (a 10x slower cycle on 2 cores). The user's own
   // setting wins.
   ::setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
+  // Relative file names in the scene (a Gmsh mesh) are the user's, relative to the scene they gave; the solvers
+  // read the copy in the run directory (config::scene_base_dir).
+  ::setenv("COSIM_SCENE_DIR", fs::absolute(opt.scene).parent_path().string().c_str(), 1);
 
   const auto stop_all = [&] {
     for (auto& c : children) stop(c, 3.0);

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -202,6 +204,12 @@ Node Node::child_or_empty(const std::string& key) {
     return Node(YAML::Node(YAML::NodeType::Map), key_path(key), ctx_);
   }
   return child(key);
+}
+
+std::string scene_base_dir(const std::string& scene_file) {
+  const char* dir = std::getenv("COSIM_SCENE_DIR");
+  if (dir && *dir) return dir;
+  return std::filesystem::path(scene_file).parent_path().string();
 }
 
 double coupled_end_time(Node& root) {

@@ -106,6 +106,11 @@ Node load_string(const std::string& text, const std::string& name = "<string>",
 // own (then optional) time.end defaults to; 0 for a standalone scene.
 double coupled_end_time(Node& root);
 
+// The directory that relative file names of a scene (a Gmsh mesh) are resolved against: $COSIM_SCENE_DIR when set
+// (`cosim run` sets it to the directory of the scene the user gave, since the solvers read a copy of it in the run
+// directory), else the directory of `scene_file`.
+std::string scene_base_dir(const std::string& scene_file);
+
 // Levenshtein distance, for "did you mean" suggestions.
 std::size_t edit_distance(const std::string& a, const std::string& b);
 std::string closest(const std::string& word, const std::set<std::string>& candidates);

@@ -395,7 +395,7 @@ SolidScene read_document(Node root, const std::string& base_dir) {
 }  // namespace
 
 SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides) {
-  return read_document(config::load_file(file, overrides), std::filesystem::path(file).parent_path().string());
+  return read_document(config::load_file(file, overrides), config::scene_base_dir(file));
 }
 
 SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides) {
