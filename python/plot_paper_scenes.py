@@ -203,7 +203,8 @@ def plot_panel(embedded, conforming, out_dir):
         ax.set_title(f"embedded, t = {f['t'] * 1e3:.3g} ms")
         ax = axes[row, 1]
         gas = c["block"] != c["block"].max()
-        pc = PolyCollection(mesh_polygons(c)[gas], array=cv[gas], cmap="inferno", edgecolors="none")
+        pc = PolyCollection(mesh_polygons(c)[gas], array=cv[gas], cmap="inferno", edgecolors="face", linewidths=0,
+                            antialiased=False)
         pc.set_clim(0, vmax)
         ax.add_collection(pc)
         ax.add_collection(PolyCollection(mesh_polygons(c)[~gas], facecolors="0.7", edgecolors="k", linewidths=0.3))
