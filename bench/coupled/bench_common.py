@@ -1,5 +1,6 @@
 """What the coupled benchmark scripts share: the repository paths and the provenance line of a run."""
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -20,3 +21,13 @@ def provenance(bin_dir):
         if p.exists():
             stamps.append(f"{exe} {time.strftime('%Y-%m-%d %H:%M:%S', time.localtime(p.stat().st_mtime))}")
     return f"git HEAD {head or '?'}; binaries built: " + ", ".join(stamps)
+
+
+def timed_run(cmd, log):
+    """Runs cmd with its output in the file `log`; returns the wall time [s]; exits naming the log on failure."""
+    t0 = time.perf_counter()
+    with open(log, "w") as fh:
+        rc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT).returncode
+    if rc != 0:
+        sys.exit(f"failed ({rc}): {' '.join(cmd)}; see {log}")
+    return time.perf_counter() - t0

@@ -15,20 +15,17 @@ Writes bench/results/coupled_modified_sod_error_vs_time.png and prints a markdow
 """
 import argparse
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-import h5py
 import matplotlib
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 from plot_paper_scenes import element_centres, exact_sod, read_fluid, read_solid, snapshots  # noqa: E402
 
-from bench_common import RESULTS, ROOT, provenance  # noqa: E402
+from bench_common import RESULTS, ROOT, provenance, timed_run  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -51,13 +48,6 @@ def l1_errors(run):
     return bg, fg
 
 
-def run(cmd, log):
-    t0 = time.perf_counter()
-    with open(log, "w") as fh:
-        rc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT).returncode
-    if rc != 0:
-        sys.exit(f"failed ({rc}): {' '.join(cmd)}; see {log}")
-    return time.perf_counter() - t0
 
 
 def main():
@@ -85,14 +75,14 @@ def main():
                     out = work / f"eulerian_{n}"
                     cmd = [str(bin_dir / "fluid_solver"), str(ref_scene), "--out", str(out), "--quiet",
                            "--set", f"fluid.mesh.cells=[{n},{n}]"]
-                    times[v].append(run(cmd, str(out) + ".log"))
+                    times[v].append(timed_run(cmd, str(out) + ".log"))
                     continue
                 mode, order = v
                 out = work / f"{mode}_o{order}_{n}"
                 cmd = [str(bin_dir / "cosim"), "run", str(scene), "--out", str(out), "--quiet",
                        "--set", f"fluid.mesh.cells=[{n},{n}]", "--set", f"solid.mesh.cells=[{m},{m}]",
                        "--set", f"coupling.mode={mode}", "--set", f"fluid.embedded.order={order}"]
-                times[v].append(run(cmd, str(out) + ".log"))
+                times[v].append(timed_run(cmd, str(out) + ".log"))
         for v in variants + ["eulerian"]:
             out = work / (f"eulerian_{n}" if v == "eulerian" else f"{v[0]}_o{v[1]}_{n}")
             bg, fg = l1_errors(str(out))

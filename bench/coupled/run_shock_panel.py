@@ -16,15 +16,13 @@ import argparse
 import csv
 import math
 import subprocess
-import sys
 import tempfile
-import time
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 
-from bench_common import RESULTS, ROOT, provenance
+from bench_common import RESULTS, ROOT, provenance, timed_run
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -40,13 +38,6 @@ def history(path):
     return np.array(t), np.array(v)
 
 
-def timed(cmd, log):
-    t0 = time.perf_counter()
-    with open(log, "w") as fh:
-        rc = subprocess.run(cmd, stdout=fh, stderr=subprocess.STDOUT).returncode
-    if rc != 0:
-        sys.exit(f"failed ({rc}): {' '.join(cmd)}; see {log}")
-    return time.perf_counter() - t0
 
 
 def main():
@@ -61,12 +52,12 @@ def main():
     res = {}
     for n in args.sizes:
         emb, conf = work / f"embedded_{n}", work / f"conforming_{n}"
-        we = timed([str(bin_dir / "cosim"), "run", str(ROOT / "configs/shock_panel_2d.yaml"), "--out", str(emb),
+        we = timed_run([str(bin_dir / "cosim"), "run", str(ROOT / "configs/shock_panel_2d.yaml"), "--out", str(emb),
                     "--quiet", "--set", f"fluid.mesh.cells=[{n},{n}]", "--set",
                     f"solid.mesh.cells=[{n // 10},{n // 2}]"], str(emb) + ".log")
         box = [] if n == 50 else ["--set", f"solid.mesh.cells=[{n},{n}]", "--set", "solid.mesh.lower=[0,0]", "--set",
                                   "solid.mesh.upper=[1,1]"]
-        wc = timed([str(bin_dir / "solid_solver"), str(ROOT / "configs/shock_panel_2d_conforming.yaml"), "--out",
+        wc = timed_run([str(bin_dir / "solid_solver"), str(ROOT / "configs/shock_panel_2d_conforming.yaml"), "--out",
                     str(conf), "--quiet"] + box, str(conf) + ".log")
         te, ve = history(emb / "solid" / "block_history.csv")
         tc, vc = history(conf / "block_history.csv")
