@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "common/config/config.h"
+#include "launcher/energy_account.h"
 #include "launcher/process.h"
 
 namespace fs = std::filesystem;
@@ -230,6 +231,10 @@ int run(const LaunchOptions& opt) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   if (tty && !opt.quiet) std::cerr << "\n";
+  if (coupled) {
+    const std::string why = write_energy_account(out);
+    if (!why.empty()) std::cerr << "cosim: no energy_account.json: " << why << "\n";
+  }
   if (!opt.quiet)
     std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n", now_s() - start_time,
                              out.string());
