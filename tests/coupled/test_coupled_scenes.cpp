@@ -202,3 +202,14 @@ TEST(CoupledScenes, EnergyAccountOfClosedDomains) {
       a["total_change_relative"].get<double>(), 100 * light[0], 100 * light[1]);
   EXPECT_LT(std::abs(light[0]), 0.02);
 }
+
+// A structure that overlaps the fluid domain's boundary is refused at the first cycle with a message naming the
+// vertex, the coordinate and the domain (faces on the boundary itself, as in the piston and the Sod slab, are fine).
+TEST(CoupledScenes, StructureOutsideTheFluidDomainIsRefused) {
+  const fs::path dir = run_dir("outside_domain");
+  EXPECT_NE(cosim_run(scene_file("modified_sod_square_2d"), dir, "--set solid.mesh.upper=[1.05,0.625]"), 0);
+  const std::string log = run_logs(dir);
+  EXPECT_NE(log.find("outside the fluid domain"), std::string::npos) << log;
+  EXPECT_NE(log.find("x = 1.0"), std::string::npos) << log;
+  EXPECT_NE(log.find("fluid.mesh"), std::string::npos) << log;
+}
