@@ -75,6 +75,7 @@ int run_fluid_coupled(const RunOptions& opt) {
   };
   const auto cycle = [&](const coupling::Directive& d) {
     const coupling::Faces faces = client->receive_faces();
+    if (first) coupled::check_structure_inside_domain(scene, faces);
     client->send_samples(boundary->receive_faces(faces, d.dt));
     const double stable_now = pipelined ? solver_work([&] { return sim->stable_dt(); }) : 0.0;
     if (pipelined) client->propose_dt(stable_now);

@@ -33,8 +33,6 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   }
 
   coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {
-    if (first_faces_) check_inside_domain(faces);
-    first_faces_ = false;
     const auto t0 = std::chrono::steady_clock::now();
     surface_ = surface_from_faces(faces, DIM, dt);
     embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
@@ -80,26 +78,6 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
                       second_order_);
   }
 
-  // The structure's first faces must lie in the background (on its boundary at most): a foreground that
-  // overlaps the domain boundary has faces the fluid cannot load or sample, a bad scene, refused by name.
-  void check_inside_domain(const coupling::Faces& faces) const {
-    const auto& sc = sim_.scene();
-    const int d = faces.dim;
-    const bool vertices = faces.nodes_per_face > 0;
-    const std::size_t n = vertices ? faces.vertex_position.size() / d : static_cast<std::size_t>(faces.count);
-    for (std::size_t v = 0; v < n; ++v)
-      for (int c = 0; c < std::min(d, DIM); ++c) {
-        const double x = vertices ? faces.vertex_position[v * d + c] : faces.centre[v * d + c];
-        const double lo = sc.lower[c], hi = sc.upper[c], tol = 1e-9 * (hi - lo);
-        if (x < lo - tol || x > hi + tol)
-          throw std::invalid_argument(fmt::format(
-              "the structure reaches outside the fluid domain: {} {} of the solid's interface is at {} = {:.9g} m, "
-              "outside fluid.mesh [{:.9g}, {:.9g}] m (place solid.mesh inside fluid.mesh.lower/upper; faces on the "
-              "domain boundary are fine)",
-              vertices ? "vertex" : "face", v, "xyz"[c], x, lo, hi));
-      }
-  }
-
   std::string segments_csv() const override { return fluid::segments_csv<DIM>(geo_); }
   double geometry_seconds() const override { return geometry_seconds_; }
 
@@ -114,10 +92,26 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   coupling::FluidSamples samples_;
   std::vector<double> face_speed_, surface_speed_, surface_pressure_;
   double geometry_seconds_ = 0;
-  bool first_faces_ = true;
 };
 
 }  // namespace
+
+void check_structure_inside_domain(const FluidScene& sc, const coupling::Faces& faces) {
+  const int d = faces.dim;
+  const bool vertices = faces.nodes_per_face > 0;
+  const std::size_t n = vertices ? faces.vertex_position.size() / d : static_cast<std::size_t>(faces.count);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int c = 0; c < std::min(d, sc.dim); ++c) {
+      const double x = vertices ? faces.vertex_position[v * d + c] : faces.centre[v * d + c];
+      const double lo = sc.lower[c], hi = sc.upper[c], tol = 1e-9 * (hi - lo);
+      if (x < lo - tol || x > hi + tol)
+        throw std::invalid_argument(fmt::format(
+            "the structure reaches outside the fluid domain: {} {} of the solid's interface is at {} = {:.9g} m, "
+            "outside fluid.mesh [{:.9g}, {:.9g}] m (place solid.mesh inside fluid.mesh.lower/upper; faces on the "
+            "domain boundary are fine)",
+            vertices ? "vertex" : "face", v, "xyz"[c], x, lo, hi));
+    }
+}
 
 std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim) {
   switch (sim.scene().dim) {

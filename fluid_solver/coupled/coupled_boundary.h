@@ -29,4 +29,9 @@ class CoupledBoundary {
 // For a 1D, 2D or 3D simulation.
 std::unique_ptr<CoupledBoundary> make_coupled_boundary(FluidSimulation& sim);
 
+// A coupled scene's structure must lie in the background (faces on its boundary are fine): throws
+// std::invalid_argument naming the first vertex (or face centre) outside fluid.mesh. The runner checks the first
+// faces it receives; the boundary itself accepts bodies partly outside (a piston entering the domain in tests).
+void check_structure_inside_domain(const FluidScene& scene, const coupling::Faces& faces);
+
 }  // namespace cosim::fluid::coupled
