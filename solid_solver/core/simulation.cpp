@@ -1,7 +1,5 @@
 #include "solid_solver/core/simulation.h"
 
-#include "solid_solver/ale/rezone.h"
-
 #include <Eigen/Dense>
 
 #include <fmt/format.h>
@@ -9,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solid_solver/ale/rezone.h"
 #include "solid_solver/forces/element_kernel.h"
 #include "solid_solver/mesh/element_faces.h"
 
@@ -255,141 +254,6 @@ void Simulation::apply_boundary_conditions() {
       if (m & (1u << d))
         st_.v[static_cast<std::size_t>(n) * D + d] = r * st_.bc_value[static_cast<std::size_t>(n) * D + d];
   }
-}
-
-// Pressure p on a face: force -p A n (A n: mesh/element_faces.h), split equally over its nodes (exact for
-// planar faces).
-void Simulation::apply_pressure_loads() {
-  const int D = mesh_.dim;
-  for (int n : loaded_nodes_)
-    for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(n) * D + d] = 0.0;
-  const double* x = st_.x.data();
-  const int k = mesh_.face_nodes();
-  for (const auto& L : loads_) {
-    const double p0 = L.pressure * (L.ramp > 0 ? std::min(1.0, t_ / L.ramp) : 1.0);
-    for (const auto& f : *L.faces) {
-      double an[3];
-      face_area_vector(D, x, f.nodes, an);
-      double p = p0;
-      if (L.absorbing) p += absorbing_pressure(f, an);
-      for (int q = 0; q < k; ++q)
-        for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(f.nodes[q]) * D + d] -= p / k * an[d];
-    }
-  }
-  // Pressures from outside (the coupler), per exterior face.
-  for (std::size_t i = 0; i < face_p_.size(); ++i) {
-    std::array<int, 4> fn{-1, -1, -1, -1};
-    for (int q = 0; q < k; ++q) fn[q] = faces_.nodes[i * k + q];
-    double an[3];
-    face_area_vector(D, x, fn, an);
-    const double w = face_p_[i] / k;
-    for (int q = 0; q < k; ++q)
-      for (int d = 0; d < D; ++d) st_.fext[static_cast<std::size_t>(fn[q]) * D + d] -= w * an[d];
-  }
-}
-
-// rho c (v . n) of a non-reflecting face: the face's mean velocity (v^{n-1/2}) along its unit outward normal,
-// times the impedance of the element behind it.
-double Simulation::absorbing_pressure(const BoundaryFace& f, const double* an) const {
-  const int D = mesh_.dim, k = mesh_.face_nodes();
-  double vn = 0, a2 = 0;
-  for (int d = 0; d < D; ++d) {
-    double vd = 0;
-    for (int q = 0; q < k; ++q) vd += st_.v[static_cast<std::size_t>(f.nodes[q]) * D + d] / k;
-    vn += vd * an[d];
-    a2 += an[d] * an[d];
-  }
-  const int e = f.element;
-  return a2 > 0 ? st_.emass[e] / st_.vol[e] * st_.c[e] * vn / std::sqrt(a2) : 0.0;
-}
-
-const BoundaryFaces& Simulation::boundary_faces() {
-  if (!faces_built_) {
-    faces_ = make_boundary_faces(mesh_);
-    faces_built_ = true;
-  }
-  std::vector<char> rigid(scene_.blocks.size(), 0);
-  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) rigid[b] = scene_.blocks[b].rigid ? 1 : 0;
-  update_boundary_faces(faces_, st_, rigid);
-  return faces_;
-}
-
-void Simulation::set_face_pressures(const std::vector<double>& p) {
-  if (!faces_built_) boundary_faces();
-  if (!p.empty() && static_cast<int>(p.size()) != faces_.count)
-    throw std::invalid_argument(
-        fmt::format("set_face_pressures: {} values for {} exterior faces", p.size(), faces_.count));
-  face_p_ = p;
-  if (p.empty())  // the loads of the scene (if any) are rebuilt every cycle
-    for (int n : loaded_nodes_)
-      for (int d = 0; d < mesh_.dim; ++d) st_.fext[static_cast<std::size_t>(n) * mesh_.dim + d] = 0.0;
-  // Mark the face nodes as loaded (their fext is rebuilt every cycle and enters the boundary work).
-  for (int n : faces_.nodes) st_.bc_mask[n] |= kBcLoaded;
-  loaded_nodes_.clear();
-  for (int n = 0; n < mesh_.num_nodes; ++n)
-    if (st_.bc_mask[n] & kBcLoaded) loaded_nodes_.push_back(n);
-}
-
-void Simulation::set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted) {
-  if (!faces_built_) boundary_faces();
-  if (u.size() != static_cast<std::size_t>(faces_.count) || wetted.size() != u.size())
-    throw std::invalid_argument(
-        fmt::format("set_face_normal_velocities: {} velocities and {} flags for {} exterior "
-                    "faces",
-                    u.size(), wetted.size(), faces_.count));
-  const int D = mesh_.dim, k = faces_.nodes_per_face;
-  // Per node, the area-weighted normal equations of "v . n_f = u_f on every wetted face f":
-  // N = sum A n n^T, c = sum A u n.
-  std::vector<Eigen::Matrix3d> N(mesh_.num_nodes, Eigen::Matrix3d::Zero());
-  std::vector<Eigen::Vector3d> c(mesh_.num_nodes, Eigen::Vector3d::Zero());
-  std::vector<char> touched(mesh_.num_nodes, 0);
-  for (int f = 0; f < faces_.count; ++f) {
-    if (!wetted[f]) continue;
-    Eigen::Vector3d nf = Eigen::Vector3d::Zero();
-    for (int d = 0; d < D; ++d) nf[d] = faces_.normal[static_cast<std::size_t>(f) * D + d];
-    const double A = faces_.area[f];
-    for (int q = 0; q < k; ++q) {
-      const int n = faces_.nodes[static_cast<std::size_t>(f) * k + q];
-      N[n] += A * nf * nf.transpose();
-      c[n] += A * u[f] * nf;
-      touched[n] = 1;
-    }
-  }
-  iface_.clear();
-  for (int n = 0; n < mesh_.num_nodes; ++n) {
-    if (!touched[n] || (st_.bc_mask[n] & kBcRigid)) continue;
-    // Pseudo-inverse over the directions the faces constrain (eigenvalues above 5% of the largest: faces
-    // that are nearly parallel constrain one direction, not two). A node of one flat face gets u along n;
-    // a corner gets the velocity that meets every face's condition; tangential directions stay free.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(N[n]);
-    const double top = es.eigenvalues().maxCoeff();
-    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-    for (int i = 0; i < 3; ++i)
-      if (es.eigenvalues()[i] > 0.05 * top)
-        P += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / es.eigenvalues()[i];
-    iface_.push_back({n, N[n], c[n], P});
-  }
-}
-
-void Simulation::apply_interface_velocities() {
-  const int D = mesh_.dim;
-  double wb = 0;
-  for (const InterfaceNode& in : iface_) {
-    double* v = &st_.v[static_cast<std::size_t>(in.node) * D];
-    Eigen::Vector3d vv = Eigen::Vector3d::Zero();
-    for (int d = 0; d < D; ++d) vv[d] = v[d];
-    const Eigen::Vector3d dv = in.pinv * (in.c - in.N * vv);  // least-squares correction in the constrained directions
-    double e_old = 0, e_new = 0;
-    for (int d = 0; d < D; ++d) {
-      e_old += v[d] * v[d];
-      if (!(st_.bc_mask[in.node] & (1u << d))) v[d] += dv[d];
-      e_new += v[d] * v[d];
-    }
-    wb += 0.5 * st_.mass[in.node] * (e_new - e_old);
-  }
-  wb_ += wb;
-  ke_ += wb;
-  iface_.clear();
 }
 
 void Simulation::nodal_update(double dt) {
