@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "solid_solver/core/simulation.h"
 
 namespace cosim::solid::solid_test {
@@ -21,6 +23,30 @@ inline void run_to(Simulation& sim, double t, long max_steps = 10000000) {
     else if (dt > 0.5 * rem) dt = 0.5 * rem;
     sim.advance(dt);
   }
+}
+
+// One hexahedron of edge 1 mm in uniaxial strain: symmetry planes everywhere except x_upper, which moves at
+// -0.1 m/s (compression at 100 /s); the block `steel` with the given eos lines (indented 6) and J2 strength; no
+// artificial viscosity.
+inline SolidScene uniaxial_strain_scene(const std::string& eos_yaml, double G, double Y) {
+  return parse_solid_scene(fmt::format(R"(
+solid:
+  mesh: {{cells: [1, 1, 1], lower: [0, 0, 0], upper: [0.001, 0.001, 0.001]}}
+  blocks:
+    - name: steel
+      {}
+      strength: {{shear_modulus: {}, yield_stress: {}}}
+  boundaries:
+    - {{set: x_lower, type: symmetry}}
+    - {{set: x_upper, type: velocity, vx: -0.1}}
+    - {{set: y_lower, type: symmetry}}
+    - {{set: y_upper, type: symmetry}}
+    - {{set: z_lower, type: symmetry}}
+    - {{set: z_upper, type: symmetry}}
+  numerics: {{q_quadratic: 0, q_linear: 0}}
+  time: {{end: 1.0}}
+)",
+                                       eos_yaml, G, Y));
 }
 
 // Deterministic pseudo-random number in [-1, 1].

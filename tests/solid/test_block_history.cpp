@@ -93,23 +93,8 @@ TEST(BlockHistory, StandaloneRunWritesRowsAtOutputsAndEveryNSteps) {
 // computed here from the stress history alone.
 TEST(BlockHistory, PlasticWorkIsTheDissipatedDeviatoricWork) {
   const double G = 8.0e10, Y = 1.0e9, L = 1e-3, vx = -0.1;
-  Simulation sim(parse_solid_scene(fmt::format(R"(
-solid:
-  mesh: {{cells: [1, 1, 1], lower: [0, 0, 0], upper: [{0}, {0}, {0}]}}
-  blocks:
-    - {{name: steel, eos: {{type: linear_elastic, bulk_modulus: 1.6e11}}, density: 7800,
-       strength: {{shear_modulus: {1}, yield_stress: {2}}}}}
-  boundaries:
-    - {{set: x_lower, type: symmetry}}
-    - {{set: x_upper, type: velocity, vx: {3}}}
-    - {{set: y_lower, type: symmetry}}
-    - {{set: y_upper, type: symmetry}}
-    - {{set: z_lower, type: symmetry}}
-    - {{set: z_upper, type: symmetry}}
-  numerics: {{q_quadratic: 0, q_linear: 0}}
-  time: {{end: 1.0}}
-)",
-                                               L, G, Y, vx)));
+  Simulation sim(solid_test::uniaxial_strain_scene(
+      "eos: {type: linear_elastic, bulk_modulus: 1.6e11}\n      density: 7800", G, Y));
   const State& st = sim.state();
   const double dt = 0.5 * sim.stable_dt();
   double w_dev = 0;

@@ -69,24 +69,7 @@ struct HelResult {
 };
 
 HelResult uniaxial_strain(const std::string& eos_yaml, double G, double Y, double K) {
-  SolidScene s = parse_solid_scene(fmt::format(R"(
-solid:
-  mesh: {{cells: [1, 1, 1], lower: [0, 0, 0], upper: [0.001, 0.001, 0.001]}}
-  blocks:
-    - name: steel
-      {}
-      strength: {{shear_modulus: {}, yield_stress: {}}}
-  boundaries:
-    - {{set: x_lower, type: symmetry}}
-    - {{set: x_upper, type: velocity, vx: -0.1}}
-    - {{set: y_lower, type: symmetry}}
-    - {{set: y_upper, type: symmetry}}
-    - {{set: z_lower, type: symmetry}}
-    - {{set: z_upper, type: symmetry}}
-  numerics: {{q_quadratic: 0, q_linear: 0}}
-  time: {{end: 1.0}}
-)",
-                                               eos_yaml, G, Y));
+  SolidScene s = solid_test::uniaxial_strain_scene(eos_yaml, G, Y);
   Simulation sim(s);
   const State& st = sim.state();
   HelResult r;
