@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "coupled_test_util.h"
 #include "sod_measures.h"
@@ -26,7 +28,7 @@ fs::path run_sod(const std::string& scene, int n, const std::string& mode) {
   const int m = n / 4;
   const std::string set = "--set fluid.mesh.cells=[" + std::to_string(n) + "," + std::to_string(n) +
                           "] --set solid.mesh.cells=[" + std::to_string(m) + "," + std::to_string(m) +
-                          "] --set coupling.mode=" + mode;
+                          "] --set coupling.mode=" + mode + " --set solid.output.history_every=1";
   EXPECT_EQ(cosim_run(scene_file(scene), dir, set), 0) << run_logs(dir);
   return dir;
 }
@@ -149,6 +151,23 @@ TEST(ModifiedSod, SquareForegroundErrorsNextToTheSlab) {
   EXPECT_LT(std::abs(m.left), 0.5);
   EXPECT_LT(std::abs(m.right), 0.5);
   EXPECT_LT(vmax, 0.1 * sod::solution().star().u);
+
+  // The free square's momentum against the impulse of the interface force the coupler delivered (the sum over
+  // cycles of force_x dt, interface_history.csv): what the interface velocity condition adds beyond the force.
+  const History h = read_history(dir);
+  double impulse = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) impulse += h.force_x[i] * h.dt[i];
+  std::ifstream in(dir / "solid" / "block_history.csv");
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  std::vector<double> c;
+  std::stringstream ss(last);
+  for (std::string cell; std::getline(ss, cell, ',');) c.push_back(std::strtod(cell.c_str(), nullptr));
+  ASSERT_GE(c.size(), 5u);
+  const double momentum = c[3] * c[4];  // mass x mean velocity
+  std::printf("[ measured ] square: momentum %.5e, interface impulse %.5e (%+.1f%%)\n", momentum, impulse,
+              100 * (momentum - impulse) / impulse);
+  EXPECT_LT(std::abs(momentum - impulse), 0.05 * impulse);
 }
 
 // Totals of both domains together at t = 0.24 against the start plus the exact flux through the transmissive
