@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "fluid_solver/core/embedded_state.h"
@@ -13,7 +14,8 @@ namespace cosim::fluid {
 // phi: signed distance at every padded cell centre (> 0 in the fluid). The interface point I lies
 // on the line between the two centres where phi changes sign (linear interpolation); d is its
 // distance from the flow cell's centre in cells. The normal and wall velocity at the face are
-// those of the solid cell's ghost record (its closest surface point).
+// those of the solid cell's ghost record (its closest surface point), except for a solid centre on the
+// surface itself (below).
 template <int DIM>
 void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, EmbeddedState& e) {
   for (int D = 0; D < DIM; ++D) {
@@ -32,6 +34,14 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
         f.fluid_cell2 = n2 < g.total && is_flow_cell(e.kind[n2]) ? n2 : n;
         f.solid_on_high_side = side == 0;
         f.normal = gr.normal;
+        // A solid cell whose centre lies on the surface (up to 1e-3 dx) at a corner of the body, e.g. a clamped
+        // corner node on the cell centre, gets the normal of one of the faces meeting there; across a grid face
+        // nearly parallel to that normal (|n_D| < 0.45) the mirror would leave the velocity through the face
+        // unchanged and let mass through the wall. Such a face is mirrored about the grid face instead.
+        if (gr.distance < 1e-3 * g.dx[D] && std::abs(gr.normal[D]) < 0.45) {
+          f.normal = {0, 0, 0};
+          f.normal[D] = side == 0 ? -1.0 : 1.0;  // from the solid cell towards the flow cell
+        }
         f.wall_velocity = gr.wall_velocity;
         const double pf = phi[n], ps = phi[c];
         f.d = pf - ps > 0 ? std::min(1.0, std::max(0.0, pf / (pf - ps))) : 0.5;
