@@ -8,6 +8,20 @@
 
 namespace cosim::solid {
 
+double element_volume(const Mesh& m, const std::vector<double>& x, int e) {
+  const int* c = &m.conn[static_cast<std::size_t>(e) * m.npe];
+  if (m.dim == 2) {
+    double p[4][2], B[4][2];
+    for (int k = 0; k < 4; ++k)
+      for (int d = 0; d < 2; ++d) p[k][d] = x[2 * static_cast<std::size_t>(c[k]) + d];
+    return element_b_matrix(p, B);
+  }
+  double p[8][3], B[8][3];
+  for (int k = 0; k < 8; ++k)
+    for (int d = 0; d < 3; ++d) p[k][d] = x[3 * static_cast<std::size_t>(c[k]) + d];
+  return element_b_matrix(p, B);
+}
+
 double swept_volume(int dim, const std::array<int, 4>& f, const std::vector<double>& xo,
                     const std::vector<double>& xn) {
   if (dim == 2) {
@@ -121,20 +135,8 @@ RemapFlux remap(const Mesh& m, const AleMesh& a, const std::vector<double>& xo, 
     }
   }
   // Volumes of the new mesh.
-  for (int e = 0; e < ne; ++e) {
-    if (!a.relaxed_element[e]) continue;
-    if (D == 2) {
-      double x[4][2], B[4][2];
-      for (int k = 0; k < 4; ++k)
-        for (int d = 0; d < 2; ++d) x[k][d] = st.x[2 * static_cast<std::size_t>(m.conn[e * 4 + k]) + d];
-      st.vol[e] = element_b_matrix(x, B);
-    } else {
-      double x[8][3], B[8][3];
-      for (int k = 0; k < 8; ++k)
-        for (int d = 0; d < 3; ++d) x[k][d] = st.x[3 * static_cast<std::size_t>(m.conn[e * 8 + k]) + d];
-      st.vol[e] = element_b_matrix(x, B);
-    }
-  }
+  for (int e = 0; e < ne; ++e)
+    if (a.relaxed_element[e]) st.vol[e] = element_volume(m, st.x, e);
   return out;
 }
 

@@ -25,6 +25,9 @@ struct RemapFlux {
 // x_old: the Lagrangian positions; st.x: the rezoned ones. Updates st.emass, st.ie, st.vol, st.mass, st.v.
 RemapFlux remap(const Mesh& m, const AleMesh& a, const std::vector<double>& x_old, State& st);
 
+// Volume of element e at coordinates x (dim per node): the one-point element's exact volume (area x 1 m in 2D).
+double element_volume(const Mesh& m, const std::vector<double>& x, int e);
+
 // Volume swept by a face (node ids in outward order of its element) moving from x_old to x_new: positive when
 // it moves outward (the element gains volume).
 double swept_volume(int dim, const std::array<int, 4>& f, const std::vector<double>& x_old,

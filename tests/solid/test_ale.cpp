@@ -17,21 +17,6 @@
 
 using namespace cosim::solid;
 
-namespace {
-double element_volume(const Mesh& m, const std::vector<double>& x, int e) {
-  if (m.dim == 2) {
-    double p[4][2], B[4][2];
-    for (int k = 0; k < 4; ++k)
-      for (int d = 0; d < 2; ++d) p[k][d] = x[2 * m.conn[4 * e + k] + d];
-    return element_b_matrix(p, B);
-  }
-  double p[8][3], B[8][3];
-  for (int k = 0; k < 8; ++k)
-    for (int d = 0; d < 3; ++d) p[k][d] = x[3 * m.conn[8 * e + k] + d];
-  return element_b_matrix(p, B);
-}
-}  // namespace
-
 // The swept volumes of an element's faces add up to its volume change, for random node moves of up to 30% of
 // a cell (quads and hexes): the remap's mass is then exactly what the new volumes hold.
 TEST(SolidAle, SweptVolumesAddUpToTheVolumeChange) {
