@@ -16,10 +16,10 @@
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/core/wall_faces.h"
-#include "fluid_solver/interface/interface_samples.h"
-#include "fluid_solver/interface/interface_surface.h"
 #include "fluid_solver/embedded/geometry.h"
 #include "fluid_solver/embedded/scene_bodies.h"
+#include "fluid_solver/interface/interface_samples.h"
+#include "fluid_solver/interface/interface_surface.h"
 
 namespace cosim::fluid {
 
@@ -45,8 +45,7 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   EmbeddedState e;
   e.active = true;
   e.kind = geo.category;
-  e.ghosts.reserve(geo.image_points.size());
-  for (const auto& ip : geo.image_points) {
+  const auto record = [&](const embedded::ImagePoint& ip) {
     GhostRecord r;
     r.cell = ip.cell;
     for (int d = 0; d < 3; ++d) {
@@ -68,9 +67,15 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     r.stencil_size = ip.stencil_size;
     r.stencil = ip.stencil;
     r.weights = ip.weights;
-    e.ghosts.push_back(r);
-  }
+    return r;
+  };
+  e.ghosts.reserve(geo.image_points.size());
+  for (const auto& ip : geo.image_points) e.ghosts.push_back(record(ip));
+  for (const auto& si : geo.side_images)  // sorted by direction, flow cell, side
+    e.side_ghosts[static_cast<std::size_t>(si.direction)].push_back(
+        SideGhost{record(si.image), si.flow_cell, si.across_high, si.blocked, si.face_distance});
   build_wall_faces<DIM>(g, geo.centres.phi, e);
+  build_thin_body_faces<DIM>(g, e);
   for (const auto& v : s.velocities) {
     double q = 0;
     for (int d = 0; d < DIM; ++d) q += v[d] * v[d];

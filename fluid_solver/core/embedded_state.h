@@ -16,7 +16,7 @@ enum class CellKind : std::uint8_t { Fluid = 0, FluidCut = 1, SolidCut = 2, Ghos
 
 inline bool is_flow_cell(std::uint8_t k) { return k <= static_cast<std::uint8_t>(CellKind::FluidCut); }
 
-// A ghost or solid-cut cell: its state comes from the image point (paper step 3, numerics.md 5.3).
+// A ghost or solid-cut cell: its state comes from the image point (paper step 3, docs/numerics.md §5.3).
 struct GhostRecord {
   std::size_t cell = 0;                   // padded cell index
   std::array<double, 3> normal{0, 0, 0};  // unit normal at the boundary intercept, solid -> fluid
@@ -44,12 +44,30 @@ struct WallFace {
   double d = 0.5;  // distance from the fluid cell centre to the interface point I, in cells
 };
 
+// Thin bodies (fluid_solver/embedded/thin_body.h): the value of the cell across a thin body as the flow cell
+// `flow_cell` must see it for its reconstruction along one direction; `ghost.cell` is that cell.
+struct SideGhost {
+  GhostRecord ghost;
+  std::size_t flow_cell = 0;
+  bool across_high = true;     // the cell across is at +e_D of the flow cell
+  bool blocked = false;        // the cell across is a flow cell: the face between them is a BlockedFace
+  double face_distance = 0.5;  // the flow cell's centre to its wall along the line, in cells (WallFace::d)
+};
+
+// A grid face between two flow cells with a body thinner than a cell between them: a wall for both. `low` is
+// the wall face as the low cell sees it (solid_cell = the high cell), `high` as the high cell sees it.
+struct BlockedFace {
+  WallFace low, high;
+};
+
 struct EmbeddedState {
   bool active = false;
-  std::vector<std::uint8_t> kind;              // per padded cell (CellKind)
-  std::vector<GhostRecord> ghosts;             // ghost and solid-cut cells
-  std::array<std::vector<WallFace>, 3> faces;  // per direction
-  double max_wall_speed = 0;                   // for the time step
+  std::vector<std::uint8_t> kind;                     // per padded cell (CellKind)
+  std::vector<GhostRecord> ghosts;                    // ghost and solid-cut cells
+  std::array<std::vector<WallFace>, 3> faces;         // per direction
+  std::array<std::vector<SideGhost>, 3> side_ghosts;  // per direction, sorted by flow cell then side
+  std::array<std::vector<BlockedFace>, 3> blocked;    // per direction
+  double max_wall_speed = 0;                          // for the time step
 };
 
 }  // namespace cosim::fluid

@@ -324,7 +324,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     }
   }
 
-  // embedded bodies (issue 4)
+  // embedded bodies
   if (auto em = f.optional_child("embedded")) {
     const int order = em->get<int>("order", 2, [](const int& v) {
       return v == 1 || v == 2 ? std::string() : std::string("1 (ghost cells only) or 2 (plus face states)");

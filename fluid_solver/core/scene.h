@@ -71,7 +71,7 @@ struct Exchange {
   double alpha_min = 1e-8;          // volume-fraction floor
 };
 
-// A body embedded in the background mesh (issue 4): a closed surface with a prescribed rigid velocity.
+// A body embedded in the background mesh: a closed surface with a prescribed rigid velocity.
 struct EmbeddedBody {
   enum class Shape { Box, Circle, Sphere, Polygon, Step } shape = Shape::Box;
   std::array<double, 3> lower{0, 0, 0}, upper{0, 0, 0};  // box / step corners [m]

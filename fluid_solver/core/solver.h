@@ -69,6 +69,13 @@ class Solver final : public FluidSimulation {
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
       std::sort(faces.begin(), faces.end(),
                 [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
+    for (auto& bf : emb_.blocked)
+      std::sort(bf.begin(), bf.end(),
+                [](const BlockedFace& a, const BlockedFace& b) { return a.high.fluid_cell < b.high.fluid_cell; });
+    for (auto& sg : emb_.side_ghosts)  // by flow cell, low side first (thin-body edges, fix_side_edges)
+      std::sort(sg.begin(), sg.end(), [](const SideGhost& a, const SideGhost& b) {
+        return a.flow_cell != b.flow_cell ? a.flow_cell < b.flow_cell : a.across_high < b.across_high;
+      });
     if (emb_.active && emb_.kind.size() != g_.total)
       throw std::invalid_argument("embedded state: kind array does not match the grid");
   }
@@ -291,7 +298,10 @@ class Solver final : public FluidSimulation {
     compute_primitives(U_);
     primitives_valid_ = false;
     bc_.fill(W_);
-    if (emb_.active) fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
+    if (emb_.active) {
+      fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
+      fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
+    }
     residual();
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
@@ -362,7 +372,7 @@ class Solver final : public FluidSimulation {
   // Paper steps 5-6 on the reconstructed edge states of one face row: at every face between a
   // flow cell and a ghost/solid-cut cell, the solid-side state becomes the mirror of the flow-side
   // state about the interface moving with u*: (alpha, rho, u - 2 ((u - u*).n) n, p) per phase, so
-  // that the face Riemann problem has its contact exactly at u* (numerics.md 5.4). u*.n is the
+  // that the face Riemann problem has its contact exactly at u* (docs/numerics.md §5.4). u*.n is the
   // interface velocity (first order) or its d-weighted extrapolation to the face (eqs. 23-26).
   template <int D>
   void mirror_wall_faces(std::size_t base, int len, double* left_edges, int left_off, double* right_edges,
@@ -378,33 +388,113 @@ class Solver final : public FluidSimulation {
       const double* from =
           wf.solid_on_high_side ? left_edges + Lay::kPrim * len_e + f + left_off : right_edges + f + right_off;
       double* to = wf.solid_on_high_side ? right_edges + f + right_off : left_edges + Lay::kPrim * len_e + f + left_off;
-      for (int v = 0; v < Lay::kPrim; ++v) to[v * len_e] = from[v * len_e];
-      for (int k = 0; k < NP; ++k) {
-        double un = 0, uIn = 0;
-        for (int d = 0; d < DIM; ++d) {
-          un += from[Lay::vel(k, d) * len_e] * wf.normal[d];
-          uIn += wf.wall_velocity[d] * wf.normal[d];
-        }
-        double ustar = uIn;
-        if (wall_second_order_) {  // eqs. 23, 25, 26 with the minmod limiter
-          double u1 = 0, u2 = 0;
-          for (int d = 0; d < DIM; ++d) {
-            u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
-            u2 += W_.var(Lay::vel(k, d))[wf.fluid_cell2] * wf.normal[d];
-          }
-          const double s = (uIn - u1) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u2);
-          const double s2 = u1 - u2;
-          const double lim = s * s2 > 0.0 ? (std::abs(s) < std::abs(s2) ? s : s2) : 0.0;
-          ustar = uIn + (0.5 - wf.d) * lim;
-        }
-        for (int d = 0; d < DIM; ++d) to[Lay::vel(k, d) * len_e] -= 2.0 * (un - ustar) * wf.normal[d];
+      mirror_edge(wf, from, to);
+    }
+  }
+
+  // The mirror of the flow-side edge state `from` about the interface of wall face wf into `to` (both with the
+  // edge rows' variable stride): (alpha, rho, u - 2 ((u - u*).n) n, p) per phase, u*.n the interface
+  // velocity or its d-weighted extrapolation to the face (eqs. 23-26).
+  void mirror_edge(const WallFace& wf, const double* from, double* to) const {
+    const std::size_t len_e = edge_row_len();
+    for (int v = 0; v < Lay::kPrim; ++v) to[v * len_e] = from[v * len_e];
+    for (int k = 0; k < NP; ++k) {
+      double un = 0, uIn = 0;
+      for (int d = 0; d < DIM; ++d) {
+        un += from[Lay::vel(k, d) * len_e] * wf.normal[d];
+        uIn += wf.wall_velocity[d] * wf.normal[d];
       }
+      double ustar = uIn;
+      if (wall_second_order_) {  // eqs. 23, 25, 26 with the minmod limiter
+        double u1 = 0, u2 = 0;
+        for (int d = 0; d < DIM; ++d) {
+          u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
+          u2 += W_.var(Lay::vel(k, d))[wf.fluid_cell2] * wf.normal[d];
+        }
+        const double s = (uIn - u1) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u2);
+        const double s2 = u1 - u2;
+        const double lim = s * s2 > 0.0 ? (std::abs(s) < std::abs(s2) ? s : s2) : 0.0;
+        ustar = uIn + (0.5 - wf.d) * lim;
+      }
+      for (int d = 0; d < DIM; ++d) to[Lay::vel(k, d) * len_e] -= 2.0 * (un - ustar) * wf.normal[d];
+    }
+  }
+
+  // Blocked faces (a body thinner than a cell between two flow cells) of one face row: the face buffer gets the
+  // wall flux of the high cell (its mirrored lo edge | its lo edge) before apply_right, and that of the low cell
+  // (its hi edge | the mirror) before apply_left. Same arguments as mirror_wall_faces.
+  template <int D, ReconMode RM>
+  void blocked_face_fluxes(bool high_side, std::size_t base, int len, const double* left_edges, int left_off,
+                           const double* right_edges, int right_off, double* mini, double* face1, double* buf,
+                           std::size_t flen) {
+    const auto& faces = emb_.blocked[D];
+    if (faces.empty()) return;
+    auto it = std::lower_bound(faces.begin(), faces.end(), base,
+                               [](const BlockedFace& f, std::size_t b) { return f.high.fluid_cell < b; });
+    const std::size_t len_e = edge_row_len(), hi = Lay::kPrim * len_e;
+    // One-face row in the scratch edges: face 0 = (hi edge of edge 0 | lo edge of edge 1); edge 1's hi edge is
+    // the right cell's other edge (its intra-cell term, two phases).
+    double* m0hi = mini + hi;
+    double* m1lo = mini + 1;
+    double* m1hi = mini + hi + 1;
+    for (; it != faces.end() && it->high.fluid_cell < base + static_cast<std::size_t>(len); ++it) {
+      const int f = static_cast<int>(it->high.fluid_cell - base);
+      if (high_side) {
+        const double* lo_edge = right_edges + f + right_off;
+        for (int v = 0; v < Lay::kPrim; ++v) {
+          m1lo[v * len_e] = lo_edge[v * len_e];
+          m1hi[v * len_e] = lo_edge[hi + v * len_e];
+        }
+        mirror_edge(it->high, lo_edge, m0hi);
+      } else {
+        const double* hi_edge = left_edges + hi + f + left_off;
+        for (int v = 0; v < Lay::kPrim; ++v) m0hi[v * len_e] = hi_edge[v * len_e];
+        mirror_edge(it->low, hi_edge, m1lo);
+        for (int v = 0; v < Lay::kPrim; ++v) m1hi[v * len_e] = m1lo[v * len_e];
+      }
+      compute_faces<D, RM>(1, mini, 0, mini, 1, face1, 1);
+      for (int v = 0; v < kFaceVars; ++v) buf[v * flen + f] = face1[v];
+    }
+  }
+
+  // Thin bodies: the flow cells with side ghosts along D among the `count` cells from `first` get their edges
+  // again, with the side ghost in place of the cell across the body (compute_edges' layout).
+  template <int D, ReconMode RM>
+  void fix_side_edges(std::size_t first, int count, double* edges) const {
+    const auto& sgs = emb_.side_ghosts[D];
+    if (sgs.empty()) return;
+    const std::size_t s = static_cast<std::size_t>(g_.stride[D]), len = edge_row_len();
+    auto it = std::lower_bound(sgs.begin(), sgs.end(), first,
+                               [](const SideGhost& g, std::size_t c) { return g.flow_cell < c; });
+    const double* values = side_values_[D].data();
+    while (it != sgs.end() && it->flow_cell < first + static_cast<std::size_t>(count)) {
+      const std::size_t c = it->flow_cell;
+      const double *below = nullptr, *above = nullptr;
+      for (; it != sgs.end() && it->flow_cell == c; ++it)
+        (it->across_high ? above : below) = values + static_cast<std::size_t>(it - sgs.begin()) * Lay::kPrim;
+      const std::size_t e = c - first;
+      for (int v = 0; v < Lay::kPrim; ++v) {
+        bool is_sound = false;
+        for (int k = 0; k < NP; ++k) is_sound = is_sound || v == Lay::sound(k);
+        if (is_sound) continue;
+        const double* w = W_.var(v);
+        const double wm = below ? below[v] : w[c - s], wp = above ? above[v] : w[c + s];
+        const double half = 0.5 * slope<RM>(wm, w[c], wp);
+        edges[v * len + e] = w[c] - half;
+        edges[(Lay::kPrim + v) * len + e] = w[c] + half;
+      }
+      for (int k = 0; k < NP; ++k)
+        for (int side = 0; side < 2; ++side) {
+          double* b = edges + side * Lay::kPrim * len + e;
+          b[Lay::sound(k) * len] =
+              std::sqrt(eos_[k].gamma * (b[Lay::pres(k) * len] + eos_[k].pinf) / b[Lay::rho(k) * len]);
+        }
     }
   }
   static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
 
   // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
-  // (same operators as relax_velocity / relax_pressure_kernel, numerics.md 2.5).
+  // (same operators as relax_velocity / relax_pressure_kernel, docs/numerics.md §2.5).
   template <bool VRELAX, bool PRELAX>
   void relax_row(std::size_t base, int len) {
     const double amin = scene_.exchange.alpha_min;
@@ -508,11 +598,14 @@ class Solver final : public FluidSimulation {
   static constexpr int fvar_lag_left = NP * (2 + DIM);
   static constexpr int fvar_lag_right = NP * (2 + DIM) + 3;
 
-  // Per-thread scratch: the face-row buffer, then two rows of reconstructed edge states.
+  // Per-thread scratch: the face-row buffer, two rows of reconstructed edge states, and a one-face row
+  // (edges and face values) for the blocked faces of thin bodies.
   struct Scratch {
     std::vector<double> data;
     double* faces = nullptr;
     double* edges[2] = {nullptr, nullptr};
+    double* mini = nullptr;
+    double* face1 = nullptr;
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
   void allocate_scratch() {
@@ -520,10 +613,12 @@ class Solver final : public FluidSimulation {
     const std::size_t fsize = static_cast<std::size_t>(kFaceVars) * flen, esize = 2 * Lay::kPrim * elen;
     scratch_.resize(static_cast<std::size_t>(omp_get_max_threads()));
     for (auto& sc : scratch_) {
-      sc.data.assign(fsize + 2 * esize, 0.0);
+      sc.data.assign(fsize + 3 * esize + kFaceVars, 0.0);
       sc.faces = sc.data.data();
       sc.edges[0] = sc.faces + fsize;
       sc.edges[1] = sc.edges[0] + esize;
+      sc.mini = sc.edges[1] + esize;
+      sc.face1 = sc.mini + esize;
     }
   }
 
@@ -541,9 +636,19 @@ class Solver final : public FluidSimulation {
         const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
         // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
         compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-        if (emb_.active) mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
+        if (emb_.active) {
+          fix_side_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+          mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
+        }
         compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
+        const auto blocked = [&](bool high_side) {
+          if (emb_.active)
+            blocked_face_fluxes<D, RM>(high_side, base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.mini, sc.face1,
+                                       sc.faces, flen);
+        };
+        blocked(true);
         apply_right<D, true>(sc.faces, flen, base, 0, n0, inv_dx);
+        blocked(false);
         apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
       }
     } else {
@@ -561,13 +666,28 @@ class Solver final : public FluidSimulation {
         // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer.
         int prev = 0;
         compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
+        if (emb_.active) fix_side_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
         for (int layer = a; layer <= b; ++layer) {
           const std::size_t base = row_base(layer);
           compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
-          if (emb_.active) mirror_wall_faces<D>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0);
+          if (emb_.active) {
+            fix_side_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+            mirror_wall_faces<D>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0);
+          }
           compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
-          if (layer < b) apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
-          if (layer > a) apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
+          const auto blocked = [&](bool high_side) {
+            if (emb_.active)
+              blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.mini,
+                                         sc.face1, sc.faces, flen);
+          };
+          if (layer < b) {
+            blocked(true);
+            apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
+          }
+          if (layer > a) {
+            blocked(false);
+            apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
+          }
           prev = 1 - prev;
         }
       }
@@ -778,7 +898,7 @@ class Solver final : public FluidSimulation {
     }
   }
 
-  // Adds the second-order intra-cell Lagrangian term of the face's right cell (numerics.md 2.6).
+  // Adds the second-order intra-cell Lagrangian term of the face's right cell (docs/numerics.md §2.6 step 3).
   template <int D, ReconMode RM>
   Lagrangian add_intra_cell(const PhaseState<DIM> (&R)[NP], double aR, const double* right_edges, int e,
                             Lagrangian right) const {
@@ -821,6 +941,7 @@ class Solver final : public FluidSimulation {
   long steps_ = 0;
   bool primitives_valid_ = false;
   EmbeddedState emb_;
+  std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
 };
 

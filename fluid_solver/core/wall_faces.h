@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "fluid_solver/core/embedded_state.h"
@@ -47,6 +49,47 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
         f.d = pf - ps > 0 ? std::min(1.0, std::max(0.0, pf / (pf - ps))) : 0.5;
         faces.push_back(f);
       }
+    }
+  }
+}
+
+// Thin bodies (EmbeddedState::side_ghosts, fluid_solver/embedded/thin_body.h): a wall face whose solid cell's
+// record serves the other side of the body takes the flow cell's own wall (normal, velocity, distance), and a
+// pair of side ghosts across a face between two flow cells makes that face a BlockedFace.
+template <int DIM>
+void build_thin_body_faces(const Grid<DIM>& g, EmbeddedState& e) {
+  for (int D = 0; D < DIM; ++D) {
+    const auto& sgs = e.side_ghosts[D];
+    e.blocked[D].clear();
+    if (sgs.empty()) continue;
+    const std::size_t s = static_cast<std::size_t>(g.stride[D]);
+    const auto find = [&](std::size_t flow_cell, bool across_high) -> const SideGhost* {
+      auto it = std::lower_bound(sgs.begin(), sgs.end(), std::make_pair(flow_cell, across_high),
+                                 [](const SideGhost& a, const std::pair<std::size_t, bool>& k) {
+                                   return a.flow_cell != k.first ? a.flow_cell < k.first : a.across_high < k.second;
+                                 });
+      return it != sgs.end() && it->flow_cell == flow_cell && it->across_high == across_high ? &*it : nullptr;
+    };
+    const auto side_face = [&](const SideGhost& sg) {
+      WallFace f;
+      f.fluid_cell = sg.flow_cell;
+      f.solid_cell = sg.ghost.cell;
+      f.solid_on_high_side = sg.across_high;
+      const std::size_t away = sg.across_high ? sg.flow_cell - s : sg.flow_cell + s;
+      f.fluid_cell2 = away < g.total && is_flow_cell(e.kind[away]) ? away : sg.flow_cell;
+      f.normal = sg.ghost.normal;
+      f.wall_velocity = sg.ghost.wall_velocity;
+      f.d = sg.face_distance;
+      return f;
+    };
+    for (WallFace& wf : e.faces[D])
+      if (const SideGhost* sg = find(wf.fluid_cell, wf.solid_on_high_side); sg && !sg->blocked) wf = side_face(*sg);
+    for (const SideGhost& sg : sgs) {
+      if (!sg.blocked || !sg.across_high) continue;
+      const SideGhost* other = find(sg.ghost.cell, false);
+      if (!other || !other->blocked || other->ghost.cell != sg.flow_cell)
+        throw std::logic_error("embedded geometry: a blocked face seen from one side only");
+      e.blocked[D].push_back(BlockedFace{side_face(sg), side_face(*other)});
     }
   }
 }

@@ -1,6 +1,6 @@
-// One cycle of the embedded-boundary geometry (paper section 6 and section 8 step 2; numerics.md
-// 5.1-5.2): interface segments, narrow-band signed distance at cell centres and nodes, cell
-// categories (Table 1), ghost / solid-cut image points, thin-body check, with a timing breakdown.
+// One cycle of the embedded-boundary geometry (paper section 6 and section 8 step 2; docs/numerics.md
+// §5.1-5.2): interface segments, narrow-band signed distance at cell centres and nodes, cell
+// categories (Table 1), ghost / solid-cut image points, side images of thin bodies, with a timing breakdown.
 // Independent of the flow solver's state arrays: input is a Grid and a Surface, output plain arrays.
 // Work is O(faces + cells near the surface); the only O(all cells) part is filling the dense
 // output arrays (phi, category) with std::fill spans.
@@ -26,8 +26,6 @@ struct GeometryOptions {
   double node_band_cells = 1.5;  // band at nodes: Table 1 needs only their sign (exact |phi_N| below it); >= 1.5
   int ghost_layers = 2;          // MUSCL reach: ghosts are solid cells within this many cells of a flow cell
   double opposite_cos = -0.9;    // thin-body test (thin_body.h)
-  int thin_reach = 1;            // ghost layers checked for two-sided use (thin_body.h, T1)
-  bool refuse_thin = true;       // throw on thin bodies (else only list them in EmbeddedGeometry::thin)
   ImagePointOptions image{};
   // Directions whose domain boundary is periodic: there a body face on the boundary plane has fluid behind
   // it. On other sides a face that lies in the boundary plane with its solid inside the domain is the domain
@@ -44,7 +42,7 @@ struct GeometryTiming {
   double distance = 0;      // phi at centres and nodes
   double categories = 0;    // Table 1 and ghost layers
   double image_points = 0;  // intercepts, image points, stencils
-  double thin = 0;          // thin-body check
+  double side_images = 0;   // two-sided ghost states of thin bodies
   double total = 0;
 };
 
@@ -65,7 +63,7 @@ struct EmbeddedGeometry {
   std::vector<InterfaceSegment> segments;  // sorted by owning cell
   std::vector<Vec3> segment_points;        // polygons of the segments (2 points in 2D)
   std::vector<ImagePoint> image_points;    // every ghost and solid-cut cell
-  std::vector<ThinSpot> thin;              // filled when refuse_thin is false
+  std::vector<SideImage> side_images;      // thin bodies: flow cells' own views across them (thin_body.h)
   CategoryCounts counts;
   GeometryWork work;
   GeometryTiming timing;
@@ -84,7 +82,6 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   if (s.dim != DIM) throw std::runtime_error("embedded geometry: the surface dimension does not match the grid");
   const auto t0 = clock::now();
   e.work = {};
-  e.thin.clear();
   const SurfaceTopology topo = build_topology(s);
   const DomainWallFaces skip = domain_wall_faces(g, s, topo, opt.periodic);
   const auto t1 = clock::now();
@@ -108,13 +105,12 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   const auto t3 = clock::now();
   e.counts = categorize(e.centres, e.nodes, e.segments, opt.ghost_layers, e.category);
   const auto t4 = clock::now();
-  e.thin = find_thin_spots(e.centres, e.segments, opt.opposite_cos, opt.thin_reach);
-  if (opt.refuse_thin && !e.thin.empty()) throw std::runtime_error(describe_thin_spot(e.thin.front()));
-  const auto t5 = clock::now();
   build_image_points(g, e.centres, s, e.category, e.image_points, opt.image);
+  const auto t5 = clock::now();
+  e.side_images = find_side_images(g, e.centres, s, e.category, opt.opposite_cos, opt.image);
   const auto t6 = clock::now();
   e.timing = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4),
-              seconds(t5, t6), seconds(t4, t5), seconds(t0, t6)};
+              seconds(t4, t5), seconds(t5, t6), seconds(t0, t6)};
 }
 
 template <int DIM>

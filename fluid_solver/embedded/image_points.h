@@ -1,13 +1,13 @@
 // Boundary intercept, image point and interpolation stencil of every ghost and solid-cut cell
-// (numerics.md 5.1-5.2; paper section 8 step 3):
+// (docs/numerics.md §5.1-5.2; paper section 8 step 3):
 //   x_BI = closest surface point,  n = (x_BI - x_G)/|phi_G| (= grad phi),  x_IP = x_G + 2|phi_G| n
 // (mirror image, Ghias et al., JCP 225 (2007) 528), and the 2^DIM cell centres around x_IP with
 // (bi/tri)linear weights. Stencil nodes that are not flow cells (fluid / fluid-cut) are flagged.
-// Fallback (numerics.md 5.2 lists the options): if the flow nodes carry at least
+// Fallback (our choice, docs/numerics.md §5.2): if the flow nodes carry at least
 // `min_flow_weight` of the plain weights, their weights are renormalised (the others get 0);
 // otherwise the image point is pushed out along n by one cell (max dx) and the stencil rebuilt,
 // at most `max_pushes` times; the record then has image_distance = 2|phi| + pushes*dx and the
-// ghost fill must use the general probe-length formula of numerics.md 5.3 (MusclBound's L).
+// ghost fill must use the general probe-length formula of docs/numerics.md §5.3 (L = |x_IP - x_G|).
 #pragma once
 
 #include <sstream>
@@ -46,9 +46,10 @@ struct ImagePointOptions {
 
 namespace detail {
 
-template <int DIM>
-void build_stencil(const Lattice<DIM>& C, const std::vector<std::uint8_t>& category, ImagePoint& ip,
-                   double& flow_weight) {
+// The (bi/tri)linear stencil of cell centres around ip.x_image; `usable(index)` says which nodes may carry weight
+// (flow cells; for a side image also only those on its side of the wall). flow_weight: the usable nodes' share.
+template <int DIM, class Usable>
+void build_stencil(const Lattice<DIM>& C, const Usable& usable, ImagePoint& ip, double& flow_weight) {
   std::array<int, 3> base{0, 0, 0};
   std::array<double, 3> t{0, 0, 0};
   for (int d = 0; d < DIM; ++d) {
@@ -67,7 +68,7 @@ void build_stencil(const Lattice<DIM>& C, const std::vector<std::uint8_t>& categ
     const auto uk = static_cast<std::size_t>(k);
     ip.stencil[uk] = C.index(base[0] + o[0], base[1] + o[1], base[2] + o[2]);
     ip.bilinear[uk] = w;
-    if (is_flow_cell(category[ip.stencil[uk]])) flow_weight += w;
+    if (usable(ip.stencil[uk])) flow_weight += w;
     else ip.non_flow_mask = static_cast<std::uint8_t>(ip.non_flow_mask | (1u << k));
   }
 }
@@ -102,7 +103,8 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     for (ip.pushes = 0;; ++ip.pushes) {
       ip.image_distance = 2 * std::abs(ip.phi) + ip.pushes * hmax;
       ip.x_image = ip.x_cell + ip.image_distance * ip.normal;
-      detail::build_stencil(C, category, ip, flow_weight);
+      detail::build_stencil(
+          C, [&](std::size_t c) { return is_flow_cell(category[c]); }, ip, flow_weight);
       if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) break;
     }
     bool outside = false;  // a ghost layer of the domain: its boundary condition applies there

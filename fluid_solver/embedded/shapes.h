@@ -1,4 +1,4 @@
-// Closed surfaces of the scene shapes (issue 4: box, circle / sphere, polygon, extruded step), each
+// Closed surfaces of the scene shapes (box, circle / sphere, polygon, extruded step), each
 // with a rigid velocity. Orientation: outward normals (see surface.h).
 #pragma once
 

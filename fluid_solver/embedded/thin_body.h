@@ -1,101 +1,109 @@
-// Thin bodies (numerics.md 5.7): a body thinner than about two cells has ghost cells that the
-// solver reads from both sides, and a single ghost value cannot serve both. Not supported: such
-// places are detected and reported (std::runtime_error naming the location), never silently used.
-// "Opposite" below means unit normals with n1.n2 < opposite_cos (default -0.9, ~154 degrees).
-//   T1  a flow cell F reads a ghost or solid-cut cell C (k = 1..reach cells along a grid line)
-//       whose wall faces the opposite way (n_C opposite to n_F): C's value is mirrored about the
-//       other side of the body. Default reach 1, the first ghost layer (the cell across the
-//       fluid/solid face, whose state the face treatment of paper steps 5-6 uses);
-//   T2  two adjacent flow cells whose closest walls both lie between them and are opposite (a
-//       body thinner than one cell passing between two cell centres: flux would leak through it);
-//   T0  one cell owns interface pieces with opposite normals (the surface folds inside one cell).
-// Consequence (reach 1): a flat plate one cell thick or thinner is always refused, one between 1
-// and 2 cells depending on its offset to the grid, one of 2 cells or more never (except with both
-// walls exactly through cell centres, which are then flow cells by the zero convention, leaving a
-// single solid row). Bodies 2-4 cells
-// thick share their SECOND ghost layer between the two sides (e.g. the paper's 9.2 advection box,
-// 3.25 cells on 13x13); reach 2 would refuse those, so it is an option, not the default.
-// Wedge tips sharper than ~26 degrees are refused (their tip cells are shared by both faces).
+// Thin bodies: two-sided ghost states (docs/numerics.md §5.7). A body thinner than about two cells puts
+// both of its walls next to the same cells, and one ghost value cannot serve both sides. Two cases,
+// found along every grid line from every flow cell F to its neighbour X ("opposite" means unit normals
+// with n_F . n_X < opposite_cos, default -0.9, ~154 degrees):
+//   shared ghost  X is a ghost or solid-cut cell whose closest wall faces away from F (n_X opposite to
+//                 n_F): a plate one to two cells thick, or a wedge tip. X's own record serves the other
+//                 side; F reads X's value for its MUSCL slope only (the face state itself is the
+//                 mirror of F's edge, steps 5-6), so F gets its own value of X: a side image.
+//   blocked face  X is a flow cell too, and both closest walls lie between the two centres with opposite
+//                 normals: a plate thinner than one cell passes between them. The grid face F|X is a
+//                 wall for both cells: each gets the flux of its own mirrored state (the solver), and
+//                 each reads its own side image of the other for its slope.
+// The side image of X seen from F: the mirror of X's centre about F's wall plane (through F's closest
+// surface point x_BI,F with F's normal n_F), x_IP = x_X + 2 d_X n_F, d_X = (x_BI,F - x_X) . n_F, with a
+// stencil of the flow cells in front of that plane only (the other side of the plate never contributes),
+// pushed out by a cell when they carry less than min_flow_weight; F alone if nothing else is found.
 #pragma once
 
-#include <sstream>
-#include <stdexcept>
-#include <string>
+#include <algorithm>
 #include <vector>
 
-#include "fluid_solver/embedded/clip.h"
+#include "fluid_solver/embedded/image_points.h"
 #include "fluid_solver/embedded/signed_distance.h"
 
 namespace cosim::fluid::embedded {
 
-struct ThinSpot {
-  std::array<int, 3> ijk{0, 0, 0};  // interior-numbered cell
-  Vec3 x{0, 0, 0};                  // its centre
-  Vec3 n1{0, 0, 0}, n2{0, 0, 0};    // the two opposite normals
-  std::string rule;                 // "T0", "T1", "T2"
+struct SideImage {
+  ImagePoint image;            // of X as seen from F: cell = X, phi = -d_X, normal/wall data of F's wall
+  std::size_t flow_cell = 0;   // F (padded index)
+  int direction = 0;           // grid direction of the line F -> X
+  bool across_high = true;     // X = F + e_direction
+  bool blocked = false;        // X is a flow cell: the face between them is a wall for both
+  double face_distance = 0.5;  // F's centre to its wall along the line, in cells (the d of the wall face)
 };
 
 template <int DIM>
-std::vector<ThinSpot> find_thin_spots(const LevelSet<DIM>& centres, const std::vector<InterfaceSegment>& segments,
-                                      double opposite_cos, int reach = 1) {
-  std::vector<ThinSpot> spots;
+std::vector<SideImage> find_side_images(const Grid<DIM>& g, const LevelSet<DIM>& centres, const Surface& s,
+                                        const std::vector<std::uint8_t>& category, double opposite_cos,
+                                        const ImagePointOptions& opt = {}) {
+  std::vector<SideImage> out;
   const Lattice<DIM>& C = centres.lattice;
-  auto record = [&](std::size_t idx, const Vec3& n1, const Vec3& n2, const char* rule) {
-    const auto I = C.ijk(idx);
-    spots.push_back(ThinSpot{{I[0] - Grid<DIM>::offset(0), I[1] - Grid<DIM>::offset(1), I[2] - Grid<DIM>::offset(2)},
-                             C.point(I[0], I[1], I[2]),
-                             n1,
-                             n2,
-                             rule});
-  };
+  double hmax = 0;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) hmax = std::max(hmax, g.dx[d]);
   for (const auto& f : centres.band) {
-    if (centres.phi[f.index] < 0) continue;  // F: a flow centre
+    if (!is_flow_cell(category[f.index])) continue;
     const auto I = C.ijk(f.index);
     for (int d = 0; d < DIM; ++d)
-      for (int dir = -1; dir <= 1; dir += 2)
-        for (int k = 1; k <= reach; ++k) {
-          std::array<int, 3> J = I;
-          J[static_cast<std::size_t>(d)] += dir * k;
-          if (!C.inside(J[0], J[1], J[2])) break;
-          const std::size_t cidx = C.index(J[0], J[1], J[2]);
-          const BandPoint* c = centres.at(cidx);
-          if (!c) break;
-          if (centres.phi[cidx] < 0) {
-            if (dot(c->normal, f.normal) < opposite_cos) record(cidx, f.normal, c->normal, "T1");
-          } else if (k == 1) {
-            const double along_f = dir * f.normal[static_cast<std::size_t>(d)],
-                         along_c = dir * c->normal[static_cast<std::size_t>(d)];
-            if (dot(c->normal, f.normal) < opposite_cos && along_f < 0 && along_c > 0)
-              record(f.index, f.normal, c->normal, "T2");
-            break;  // a flow neighbour: the solver reads past it only through another flow cell
-          } else {
-            break;
+      for (int dir = -1; dir <= 1; dir += 2) {
+        std::array<int, 3> J = I;
+        J[static_cast<std::size_t>(d)] += dir;
+        if (!C.inside(J[0], J[1], J[2])) continue;
+        const std::size_t xidx = C.index(J[0], J[1], J[2]);
+        const BandPoint* x = centres.at(xidx);
+        if (!x || !(dot(x->normal, f.normal) < opposite_cos)) continue;
+        const auto ud = static_cast<std::size_t>(d);
+        const bool across_flow = is_flow_cell(category[xidx]);
+        const bool blocked = across_flow && dir * f.normal[ud] < 0 && dir * x->normal[ud] > 0;
+        if (across_flow && !blocked) continue;
+        SideImage si;
+        si.flow_cell = f.index;
+        si.direction = d;
+        si.across_high = dir > 0;
+        si.blocked = blocked;
+        ImagePoint& ip = si.image;
+        ip.cell = xidx;
+        ip.ijk = {J[0] - Grid<DIM>::offset(0), J[1] - Grid<DIM>::offset(1), J[2] - Grid<DIM>::offset(2)};
+        ip.kind = static_cast<CellKind>(category[xidx]);
+        ip.x_cell = C.point(J[0], J[1], J[2]);
+        ip.x_boundary = f.closest;
+        ip.normal = f.normal;
+        ip.face = f.face;
+        ip.wall_velocity = face_velocity(s, f.face, f.bary);
+        const double dX = std::max(dot(f.closest - ip.x_cell, f.normal), 1e-6 * hmax);  // X behind F's wall plane
+        ip.phi = -dX;
+        const double dF = std::max(centres.phi[f.index], 0.0);
+        si.face_distance = std::clamp(dF / (dF + dX), 0.0, 1.0);
+        const auto in_front = [&](std::size_t c) {
+          const auto K = C.ijk(c);
+          return is_flow_cell(category[c]) && dot(C.point(K[0], K[1], K[2]) - f.closest, f.normal) > -1e-9 * hmax;
+        };
+        double flow_weight = 0;
+        for (ip.pushes = 0;; ++ip.pushes) {
+          ip.image_distance = 2 * dX + ip.pushes * hmax;
+          ip.x_image = ip.x_cell + ip.image_distance * ip.normal;
+          detail::build_stencil(C, in_front, ip, flow_weight);
+          if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) break;
+        }
+        if (flow_weight > 0) {
+          for (int k = 0; k < ip.stencil_size; ++k) {
+            const auto uk = static_cast<std::size_t>(k);
+            ip.weights[uk] = (ip.non_flow_mask >> k) & 1u ? 0.0 : ip.bilinear[uk] / flow_weight;
           }
+        } else {  // nothing in front but F itself (a plate tip in a one-cell gap): F's own state
+          ip.stencil_size = 1;
+          ip.stencil[0] = f.index;
+          ip.weights[0] = 1.0;
         }
+        out.push_back(si);
+      }
   }
-  for (std::size_t a = 0; a < segments.size();) {
-    std::size_t e = a;
-    while (e < segments.size() && segments[e].cell == segments[a].cell) ++e;
-    for (std::size_t p = a; p < e; ++p)
-      for (std::size_t q = p + 1; q < e; ++q)
-        if (dot(segments[p].normal, segments[q].normal) < opposite_cos) {
-          record(segments[p].cell, segments[p].normal, segments[q].normal, "T0");
-          p = q = e;  // one report per cell
-        }
-    a = e;
-  }
-  return spots;
-}
-
-inline std::string describe_thin_spot(const ThinSpot& t) {
-  std::ostringstream m;
-  m << "embedded geometry: body thinner than two cells near x = (" << t.x[0] << ", " << t.x[1] << ", " << t.x[2]
-    << "), cell (" << t.ijk[0] << ", " << t.ijk[1] << ", " << t.ijk[2] << "), rule " << t.rule
-    << ": walls with opposite normals (" << t.n1[0] << ", " << t.n1[1] << ", " << t.n1[2] << ") and (" << t.n2[0]
-    << ", " << t.n2[1] << ", " << t.n2[2]
-    << ") share its ghost cells; thin bodies need two-sided ghost states, which are not supported: refine the grid or "
-       "thicken the body";
-  return m.str();
+  std::sort(out.begin(), out.end(), [](const SideImage& a, const SideImage& b) {
+    if (a.direction != b.direction) return a.direction < b.direction;
+    if (a.flow_cell != b.flow_cell) return a.flow_cell < b.flow_cell;
+    return a.across_high < b.across_high;
+  });
+  return out;
 }
 
 }  // namespace cosim::fluid::embedded

@@ -1,5 +1,5 @@
-// Two-chamber piston reference ODE (numerics.md 8.2): equilibrium, turning points and period of the
-// nondimensional setup (A = m = pR0 = 1, VL0 = 1, VR0 = 2, pL0 = 2) against the dossier's table.
+// Two-chamber piston reference ODE (docs/numerics.md §8.2): equilibrium, turning points and period of the
+// nondimensional setup (A = m = pR0 = 1, VL0 = 1, VR0 = 2, pL0 = 2) against the reference numbers there.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 
 using namespace cosim::verification;
 
-TEST(PistonOde, AdiabaticTwoChamberMatchesDossier) {
+TEST(PistonOde, AdiabaticTwoChamberMatchesReference) {
   PistonOde p;  // defaults: the nondimensional setup, gamma = 1.4
   const auto eq = piston_equilibrium(p);
   EXPECT_NEAR(eq.v_left, 1.35195, 1e-5);

@@ -1,4 +1,4 @@
-// The embedded boundary in the flow solver (issue 4), driven by the scene's bodies: advection
+// The embedded boundary in the flow solver, driven by the scene's bodies: advection
 // with the flow (paper 9.2), walls at an angle, reflected shocks, moving pistons.
 #include <gtest/gtest.h>
 
