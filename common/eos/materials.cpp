@@ -1,12 +1,23 @@
 #include "common/eos/materials.h"
 
+#include <cmath>
+
 namespace cosim::eos {
 
+StiffenedGas with_reference_temperature(StiffenedGas sg, double rho, double p, double T) {
+  sg.a0 = (p + sg.pinf - (sg.gamma - 1.0) * rho * sg.cv * T) / std::pow(rho, sg.gamma);
+  return sg;
+}
+
+namespace {
+
 // Stiffened-gas fits of metals match the weak-shock slope and the reference sound speed
-// (numerics.md 7.4: gamma = 4s - 1, pinf = rho0 c0^2 / gamma - p0); Mie-Grueneisen data from
-// numerics.md 7.3 (Kinslow, Steinberg). Heat capacities are the table values.
-const std::vector<Material>& material_library() {
-  static const std::vector<Material> lib = {
+// (docs/numerics.md §7.4: gamma = 4s - 1, pinf = rho0 c0^2 / gamma - p0); Mie-Grueneisen data from
+// docs/numerics.md §7.3 (Kinslow, Steinberg). Heat capacities are the table values. The metals' temperatures
+// are fitted to their reference state (docs/numerics.md §7.5); water's fit would give it a negative thermal
+// expansion (its a0 < 0), so water keeps a0 = 0 and is given by its density.
+std::vector<Material> build_library() {
+  std::vector<Material> lib = {
       {"air", "ideal gas, gamma 1.4, R = 287.05 J/(kg K)", {1.4, 0.0, 0.0, 717.6}, 1.225, std::nullopt},
       {"water",
        "stiffened gas gamma 4.4, pinf 6e8 Pa (Saurel-Abgrall)",
@@ -29,6 +40,16 @@ const std::vector<Material>& material_library() {
        7896.0,
        MieGruneisenParams{7896.0, 4569.0, 1.49, 2.17, 441.3}},
   };
+  for (Material& m : lib)
+    if (m.mg)
+      m.sg = with_reference_temperature(m.sg, m.reference_density, m.reference_pressure, m.reference_temperature);
+  return lib;
+}
+
+}  // namespace
+
+const std::vector<Material>& material_library() {
+  static const std::vector<Material> lib = build_library();
   return lib;
 }
 

@@ -1,5 +1,5 @@
 // A small material library: named parameter sets for the EOS of the fluid (stiffened gas) and
-// the structure (Mie-Grueneisen), numerics.md 7.1-7.4.
+// the structure (Mie-Grueneisen), docs/numerics.md §7.1-7.4.
 #pragma once
 
 #include <optional>
@@ -21,10 +21,15 @@ struct MieGruneisenParams {
 struct Material {
   std::string name;
   std::string description;
-  StiffenedGas sg;                       // used by the fluid solver
-  double reference_density;              // [kg/m^3] at the reference state
-  std::optional<MieGruneisenParams> mg;  // metals only
+  StiffenedGas sg;                        // used by the fluid solver
+  double reference_density;               // [kg/m^3] at the reference state
+  std::optional<MieGruneisenParams> mg;   // metals only
+  double reference_pressure = 1.0e5;      // [Pa]
+  double reference_temperature = 293.15;  // [K]
 };
+
+// sg with its temperature datum a0 fitted so that T(rho, p) = T (stiffened_gas.h).
+StiffenedGas with_reference_temperature(StiffenedGas sg, double rho, double p, double T);
 
 const std::vector<Material>& material_library();
 // Returns nullptr when the name is unknown.

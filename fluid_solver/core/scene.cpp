@@ -7,6 +7,7 @@
 
 #include "common/config/output_times.h"
 #include "common/eos/materials.h"
+#include "fluid_solver/core/scene_readers.h"
 
 namespace cosim::fluid {
 
@@ -14,109 +15,11 @@ using config::Node;
 
 namespace {
 
+using scene_readers::read_phase;
+using scene_readers::read_point;
+using scene_readers::read_state;
+
 const std::vector<std::string> kAxes = {"x", "y", "z"};
-
-std::array<double, 3> read_point(Node& n, const std::string& key, int dim, std::optional<std::vector<double>> fb = {}) {
-  auto v = n.get_vector(key, dim, dim, fb);
-  std::array<double, 3> out{0, 0, 0};
-  for (int d = 0; d < dim; ++d) out[d] = v[d];
-  return out;
-}
-
-eos::StiffenedGas read_eos(Node& n, const std::string& phase_name, std::string& material) {
-  material = n.get<std::string>("material", "custom");
-  eos::StiffenedGas sg;
-  if (material != "custom") {
-    const auto* m = eos::find_material(material);
-    if (!m) {
-      auto names = eos::material_names();
-      names.push_back("custom");
-      n.fail("material", config::one_of(names)(material));
-    }
-    sg = m->sg;
-  }
-  auto e = n.optional_child("eos");
-  if (e) {
-    std::string type = e->get<std::string>("type", "stiffened_gas", config::one_of({"ideal_gas", "stiffened_gas"}));
-    sg.gamma = e->get<double>("gamma", sg.gamma, config::in_open_closed(1.0, 100.0));
-    if (type == "stiffened_gas") sg.pinf = e->get<double>("pinf", sg.pinf, config::non_negative());
-    else sg.pinf = 0.0;
-    sg.q = e->get<double>("q", sg.q);
-    sg.cv = e->get<double>("cv", sg.cv, config::positive());
-    e->finish();
-  } else if (material == "custom") {
-    n.fail("eos", "an eos section (type, gamma, pinf, cv) for phase '" + phase_name + "' without a material");
-  }
-  return sg;
-}
-
-// A state: top-level defaults (rho | T, p, velocity, alpha list) with optional per-phase overrides.
-MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
-  const int np = static_cast<int>(phases.size());
-  MixtureValue out(np);
-  double p = n.get<double>("p", std::nan(""));
-  std::optional<double> rho, T;
-  if (n.has("rho")) rho = n.get<double>("rho", 0, config::positive());
-  if (n.has("T")) T = n.get<double>("T", 0, config::positive());
-  n.skip("rho");
-  n.skip("T");
-  auto vel = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0));
-  std::vector<double> alphas;
-  if (np == 1) {
-    alphas = {1.0};
-    n.get<double>("alpha", 1.0, config::in_range(1.0, 1.0));
-  } else {
-    alphas = n.get_vector("alpha", np, np, std::vector<double>{}, config::in_range(0.0, 1.0));
-  }
-  std::vector<std::optional<Node>> per_phase(np);
-  if (n.has("phases")) {
-    auto list = n.list("phases");
-    if (static_cast<int>(list.size()) != np)
-      n.fail("phases", fmt::format("a list of {} per-phase entries (one per phase)", np));
-    for (int k = 0; k < np; ++k) per_phase[k] = list[k];
-  }
-  n.skip("phases");
-  for (int k = 0; k < np; ++k) {
-    PhaseValue& v = out[k];
-    double pk = p, alpha = alphas.empty() ? std::nan("") : alphas[k];
-    std::optional<double> rk = rho, Tk = T;
-    auto velk = vel;
-    if (per_phase[k]) {
-      Node& q = *per_phase[k];
-      for (const char* k2 : {"p", "alpha", "rho", "T"}) q.skip(k2);
-      if (q.has("p")) pk = q.get<double>("p", 0);
-      if (q.has("alpha")) alpha = q.get<double>("alpha", 0, config::in_range(0.0, 1.0));
-      if (q.has("rho")) {
-        rk = q.get<double>("rho", 0, config::positive());
-        Tk.reset();
-      }
-      if (q.has("T")) {
-        Tk = q.get<double>("T", 0, config::positive());
-        if (!q.has("rho")) rk.reset();
-      }
-      velk = read_point(q, "velocity", dim, std::vector<double>(vel.begin(), vel.begin() + dim));
-      q.finish();
-    }
-    if (std::isnan(pk)) n.fail("p", fmt::format("a pressure [Pa] for phase '{}'", phases[k].name));
-    if (std::isnan(alpha)) n.fail("alpha", fmt::format("a list of {} volume fractions", np));
-    if (!rk && !Tk) n.fail("rho", fmt::format("rho [kg/m^3] or T [K] for phase '{}'", phases[k].name));
-    v.alpha = alpha;
-    v.p = pk;
-    v.rho = rk ? *rk : phases[k].eos.density_from_pT(pk, *Tk);
-    v.velocity = velk;
-    if (!phases[k].eos.admissible(v.rho, v.p))
-      n.fail("p", fmt::format("p + pinf > 0 for phase '{}' (p = {:g} Pa, pinf = {:g} Pa)", phases[k].name, v.p,
-                              phases[k].eos.pinf));
-  }
-  if (np > 1) {
-    double s = 0;
-    for (auto& v : out) s += v.alpha;
-    if (std::abs(s - 1.0) > 1e-9)
-      n.fail("alpha", fmt::format("volume fractions that sum to 1 (they sum to {:.12g})", s));
-  }
-  n.finish();
-  return out;
-}
 
 Boundary read_boundary(Node& n, const std::string& key, const std::vector<Phase>& phases, int dim) {
   Boundary b;
@@ -276,13 +179,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   // phases
   auto plist = f.list("phases");
   if (plist.empty() || plist.size() > 2) f.fail("phases", "one or two phases");
-  for (auto& pn : plist) {
-    Phase ph;
-    ph.name = pn.require<std::string>("name");
-    ph.eos = read_eos(pn, ph.name, ph.material);
-    pn.finish();
-    s.phases.push_back(ph);
-  }
+  for (auto& pn : plist) s.phases.push_back(read_phase(pn));
 
   // numerics
   if (auto num = f.optional_child("numerics")) {

@@ -33,6 +33,8 @@ struct Phase {
   std::string name;
   std::string material;  // library name or "custom"
   eos::StiffenedGas eos;
+  double reference_density = 0;              // [kg/m^3] of a condensed library material (0: not checked)
+  bool allow_off_reference_density = false;  // the scene means a state more than 10% from it
 };
 
 struct Boundary {

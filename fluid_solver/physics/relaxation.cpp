@@ -13,8 +13,6 @@ double kinetic_per_mass(const CellState2& s, int k, int dim) {
   for (int d = 0; d < dim; ++d) q += s.mom[k][d] * s.mom[k][d];
   return 0.5 * q / (s.m[k] * s.m[k]);
 }
-// Temperature from specific internal energy at density rho: e - q = cv T + pinf / rho (SG).
-double temperature(const eos::StiffenedGas& e, double rho, double eint) { return (eint - e.q - e.pinf / rho) / e.cv; }
 }  // namespace
 
 void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {
@@ -47,7 +45,7 @@ void apply_heat_transfer(CellState2& s, const eos::StiffenedGas (&eos)[2], const
   const double rho_g = mg / s.alpha0, rho_p = mp / (1.0 - s.alpha0);
   const double eg = s.E[0] / mg - kinetic_per_mass(s, 0, dim);
   const double ep = s.E[1] / mp - kinetic_per_mass(s, 1, dim);
-  const double dT = temperature(eos[0], rho_g, eg) - temperature(eos[1], rho_p, ep);
+  const double dT = eos[0].temperature_from_e(rho_g, eg) - eos[1].temperature_from_e(rho_p, ep);
   if (dT == 0.0) return;
   double slip2 = 0;
   for (int d = 0; d < dim; ++d) {

@@ -34,6 +34,41 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s;
 }
 
+// A condensed library material far from its reference density is refused, naming the key, the density the state
+// implies and the reference, unless the phase says it is meant; by temperature, metals get their true density.
+TEST(SceneValidation, CondensedPhaseFarFromItsReferenceDensityIsRefused) {
+  const std::string two_phase = R"(name: w
+fluid:
+  mesh: {cells: [20], lower: [0.0], upper: [1.0]}
+  phases: [{name: air, material: air}, {name: drops, material: water}]
+  time: {end: 0.01}
+  initial:
+    state: {p: 1.0e5, T: 300, velocity: [0.0], alpha: [0.9, 0.1]}
+)";
+  // water's stiffened gas with its true heat capacity: 1e5 Pa and 300 K would be 140.5 kg/m^3
+  const std::string e = error_of(two_phase);
+  EXPECT_NE(e.find("<scene>:7: fluid.initial.state.T: expected a state of phase 'drops' (material water) within 10% "
+                   "of its reference density 1000 kg/m^3, but T = 300 K at p = 100000 Pa gives rho = 140.5 kg/m^3 "
+                   "(0.141 times the reference); give rho instead of T"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("allow_off_reference_density: true"), std::string::npos) << e;
+  // given by its density it is fine; a density 35x too high is refused the same way, unless allowed
+  const std::string by_rho = replace(two_phase, "T: 300, velocity", "rho: 1.2, velocity");
+  EXPECT_EQ(error_of(replace(by_rho, "alpha: [0.9, 0.1]}", "alpha: [0.9, 0.1], phases: [{}, {rho: 1000}]}")), "");
+  const std::string dense = replace(by_rho, "alpha: [0.9, 0.1]}", "alpha: [0.9, 0.1], phases: [{}, {rho: 35000}]}");
+  EXPECT_NE(error_of(dense).find("fluid.initial.state.rho: expected a state of phase 'drops' (material water) within "
+                                 "10% of its reference density 1000 kg/m^3, but rho = 3.5e+04 kg/m^3 is (35 times"),
+            std::string::npos)
+      << error_of(dense);
+  EXPECT_EQ(error_of(replace(dense, "material: water}", "material: water, allow_off_reference_density: true}")), "");
+  // tungsten by temperature: its density (the scene is accepted), cold and hot
+  FluidScene s = parse_fluid_scene(replace(two_phase, "material: water", "material: tungsten"));
+  EXPECT_NEAR(s.background[1].rho, 19221, 10);
+  s = parse_fluid_scene(replace(replace(two_phase, "material: water", "material: tungsten"), "T: 300", "T: 3000"));
+  EXPECT_NEAR(s.background[1].rho, 17924, 10);
+}
+
 TEST(SceneValidation, GoodSceneParses) { EXPECT_EQ(error_of(kGood), ""); }
 
 TEST(SceneValidation, TypoSuggestsClosestKey) {

@@ -1,0 +1,26 @@
+// Readers shared by the parts of the fluid scene reader (scene.cpp): points, phases and their equations of
+// state, and mixture states (scene_phases.cpp). Internal to the scene reader.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/config/config.h"
+#include "fluid_solver/core/scene.h"
+
+namespace cosim::fluid::scene_readers {
+
+// A point of `dim` coordinates (the others 0); fb: the default when the key is absent.
+std::array<double, 3> read_point(config::Node& n, const std::string& key, int dim,
+                                 std::optional<std::vector<double>> fb = {});
+
+// One entry of fluid.phases: name, material (library or custom) and equation of state.
+Phase read_phase(config::Node& n);
+
+// A state: top-level defaults (rho | T, p, velocity, alpha list) with optional per-phase overrides. A condensed
+// library material more than 10% from its reference density is refused unless its phase allows it.
+MixtureValue read_state(config::Node& n, const std::vector<Phase>& phases, int dim);
+
+}  // namespace cosim::fluid::scene_readers
