@@ -34,15 +34,20 @@ std::string write_energy_account(const std::filesystem::path& dir) {
     const double work = se.at("end").at("boundary_work").get<double>();
     const double inflow = se.at("end").value("ale_inflow", 0.0);
     const double total = (f1 - f0) + (s1 - s0);
+    const auto& ft = f.at("totals");
+    const double fin = ft.contains("boundary_inflow") ? phase_energy(ft.at("boundary_inflow")) : 0.0;
     nlohmann::json a;
-    a["fluid"] = {{"start", f0}, {"end", f1}, {"change", f1 - f0}};
+    a["fluid"] = {{"start", f0}, {"end", f1}, {"change", f1 - f0}, {"boundary_inflow", fin}};
     a["solid"] = {{"start", s0}, {"end", s1}, {"change", s1 - s0}, {"boundary_work", work}, {"ale_inflow", inflow}};
     a["total_change"] = total;
     a["total_change_relative"] = (f0 + s0) != 0 ? total / std::abs(f0 + s0) : 0.0;
+    a["interface_created"] = total - fin;
+    a["interface_created_relative"] = (f0 + s0) != 0 ? (total - fin) / std::abs(f0 + s0) : 0.0;
     a["meaning"] =
-        "total_change = fluid change + solid change: what the interface created (> 0) or lost (< 0), plus the energy "
-        "through the fluid's open boundaries and the solid's other boundaries (fluid: flow cells, all phases; solid: "
-        "internal + kinetic; J, per metre of depth in 2D)";
+        "total_change = fluid change + solid change; interface_created = total_change - fluid.boundary_inflow (the "
+        "energy through the fluid's domain boundary): what the interface created (> 0) or lost (< 0), plus the work "
+        "of the solid's own boundaries (fluid: flow cells, all phases; solid: internal + kinetic; J, per metre of "
+        "depth in 2D)";
     io::write_file_atomically(dir / "energy_account.json", a.dump(2) + "\n");
   } catch (const std::exception& e) { return e.what(); }
   return "";

@@ -32,7 +32,23 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());
   j["threads"] = omp_get_max_threads();
   const nlohmann::json end_totals = totals_json(s, sim.totals());
-  j["totals"] = {{"start", rec.start_totals}, {"end", end_totals}};
+  const std::vector<PhaseTotals> inflow = sim.boundary_inflow();
+  // created = end - start - boundary_inflow, per phase: what the scheme itself made (round-off without bodies).
+  nlohmann::json created = nlohmann::json::array();
+  for (std::size_t k = 0; k < inflow.size() && k < end_totals.size(); ++k) {
+    const auto &a = rec.start_totals[k], &b = end_totals[k];
+    nlohmann::json mom = nlohmann::json::array();
+    for (int d = 0; d < 3; ++d)
+      mom.push_back(b["momentum"][d].get<double>() - a["momentum"][d].get<double>() - inflow[k].momentum[d]);
+    created.push_back({{"phase", b["phase"]},
+                       {"mass", b["mass"].get<double>() - a["mass"].get<double>() - inflow[k].mass},
+                       {"momentum", mom},
+                       {"energy", b["energy"].get<double>() - a["energy"].get<double>() - inflow[k].energy}});
+  }
+  j["totals"] = {{"start", rec.start_totals},
+                 {"end", end_totals},
+                 {"boundary_inflow", totals_json(s, inflow)},
+                 {"created", created}};
   if (sim.embedded().active) {
     // The embedded boundary is not conservative: what the flow cells gained or lost. In a closed or
     // periodic domain this is exactly what crossed the moving boundary (cells covered or uncovered

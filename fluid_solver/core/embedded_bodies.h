@@ -75,6 +75,18 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     e.side_ghosts[static_cast<std::size_t>(si.direction)].push_back(
         SideGhost{record(si.image), si.flow_cell, si.across_high, si.blocked, si.face_distance});
   build_wall_faces<DIM>(g, geo.centres.phi, e);
+  orient_wall_faces<DIM>(e, [&](std::size_t cell, std::array<double, 3>& n, std::array<double, 3>& v) {
+    const embedded::BandPoint* bp = geo.centres.at(cell);
+    if (!bp || bp->face < 0) return false;
+    embedded::ImagePoint ip;
+    ip.normal = bp->normal;
+    ip.face = bp->face;
+    ip.wall_velocity = embedded::face_velocity(s, bp->face, bp->bary);
+    const GhostRecord r = record(ip);
+    n = r.normal;
+    v = r.wall_velocity;
+    return true;
+  });
   build_thin_body_faces<DIM>(g, e);
   for (const auto& v : s.velocities) {
     double q = 0;
@@ -120,6 +132,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   }
   PhaseFields phase_fields(int k) const override { return inner_->phase_fields(k); }
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
+  std::vector<PhaseTotals> boundary_inflow() const override { return inner_->boundary_inflow(); }
   void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
     inner_->cell_states(cells, count, out);
   }

@@ -52,6 +52,11 @@ class FluidSimulation {
   virtual PhaseFields phase_fields(int phase) const = 0;
   // Mass, momentum and energy of each phase over the flow cells (fluid and fluid-cut).
   virtual std::vector<PhaseTotals> totals() const = 0;
+  // What entered the flow cells through the domain boundary since the start (< 0: left), per phase: the
+  // conservative part of the boundary faces' fluxes, integrated with the Runge-Kutta weights. With it
+  // totals() at the end minus at the start minus this is what the scheme itself created (round-off without
+  // bodies; with bodies also what crossed their walls).
+  virtual std::vector<PhaseTotals> boundary_inflow() const = 0;
   // States of the given padded cells, phase-major per cell: out[n * phases + k] (phases = scene().num_phases()).
   virtual void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const = 0;
   virtual std::size_t interior_cells() const = 0;

@@ -119,6 +119,7 @@ class Solver final : public FluidSimulation {
 
   void advance(double dt) override {
     U0_.data = U_.data;
+    step_inflow_.fill(0.0);
     if (scene_.integrator == TimeIntegrator::RK2) {
       stage(dt, 0.0, 1.0);
       stage(dt, 0.5, 0.5);
@@ -129,6 +130,7 @@ class Solver final : public FluidSimulation {
     }
     if constexpr (NP == 2) exchange_sources(dt);
     if (emb_.active) store_ghost_states();
+    for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     t_ += dt;
     ++steps_;
     primitives_valid_ = false;
@@ -186,6 +188,16 @@ class Solver final : public FluidSimulation {
         o.c = eos_[k].sound_speed(o.rho, o.p);
       }
     }
+  }
+
+  std::vector<PhaseTotals> boundary_inflow() const override {
+    std::vector<PhaseTotals> out(NP);
+    for (int k = 0; k < NP; ++k) {
+      out[k].mass = inflow_[fvar_flux(k, 0)];
+      for (int d = 0; d < DIM; ++d) out[k].momentum[d] = inflow_[fvar_flux(k, 1 + d)];
+      out[k].energy = inflow_[fvar_flux(k, 1 + DIM)];
+    }
+    return out;
   }
 
   std::vector<PhaseTotals> totals() const override {
@@ -303,6 +315,13 @@ class Solver final : public FluidSimulation {
       fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
     }
     residual();
+    // Boundary inflow of this stage, with the stage's Runge-Kutta weights: U - U0 = b (U_prev - U0 + dt R).
+    for (std::size_t i = 0; i < step_inflow_.size(); ++i) {
+      double f = 0;
+      for (const auto& sc : scratch_) f += sc.boundary[i];
+      step_inflow_[i] = b * (step_inflow_[i] + dt * f);
+    }
+    (void)a;
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
@@ -577,6 +596,7 @@ class Solver final : public FluidSimulation {
   }
 
   void residual() {
+    for (auto& sc : scratch_) sc.boundary.fill(0.0);
     sweep<0>();  // assigns R (no zeroing pass)
     if constexpr (DIM > 1) sweep<1>();
     if constexpr (DIM > 2) sweep<2>();
@@ -606,6 +626,7 @@ class Solver final : public FluidSimulation {
     double* edges[2] = {nullptr, nullptr};
     double* mini = nullptr;
     double* face1 = nullptr;
+    std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
   void allocate_scratch() {
@@ -646,6 +667,8 @@ class Solver final : public FluidSimulation {
             blocked_face_fluxes<D, RM>(high_side, base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.mini, sc.face1,
                                        sc.faces, flen);
         };
+        add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
+        add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
         blocked(true);
         apply_right<D, true>(sc.faces, flen, base, 0, n0, inv_dx);
         blocked(false);
@@ -680,6 +703,10 @@ class Solver final : public FluidSimulation {
               blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.mini,
                                          sc.face1, sc.faces, flen);
           };
+          if (layer == 0)
+            for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base + f, 1);
+          if (layer == nD)
+            for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base - s + f, -1);
           if (layer < b) {
             blocked(true);
             apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
@@ -692,6 +719,17 @@ class Solver final : public FluidSimulation {
         }
       }
     }
+  }
+
+  // A domain-boundary face f of a face row whose interior cell is `cell`: sign +1 when the flux along +e_D
+  // enters the domain (the low boundary), -1 at the high one; times the face area. Faces next to a body's
+  // cell (not a flow cell) carry nothing into the flow cells.
+  template <int D>
+  void add_boundary_flux(Scratch& sc, const double* buf, std::size_t flen, int f, std::size_t cell, int sign) const {
+    if (emb_.active && !is_flow_cell(emb_.kind[cell])) return;
+    const double area = sign * g_.cell_volume() / g_.dx[D];
+    for (int k = 0; k < NP; ++k)
+      for (int q = 0; q < 2 + DIM; ++q) sc.boundary[fvar_flux(k, q)] += area * buf[fvar_flux(k, q) * flen + f];
   }
 
   // Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f. The x sweep comes first
@@ -941,7 +979,8 @@ class Solver final : public FluidSimulation {
   long steps_ = 0;
   bool primitives_valid_ = false;
   EmbeddedState emb_;
-  std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
+  std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
+  std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
 };
 

@@ -16,8 +16,7 @@ namespace cosim::fluid {
 // phi: signed distance at every padded cell centre (> 0 in the fluid). The interface point I lies
 // on the line between the two centres where phi changes sign (linear interpolation); d is its
 // distance from the flow cell's centre in cells. The normal and wall velocity at the face are
-// those of the solid cell's ghost record (its closest surface point), except for a solid centre on the
-// surface itself (below).
+// those of the solid cell's ghost record (its closest surface point); orient_wall_faces may then choose a better one.
 template <int DIM>
 void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, EmbeddedState& e) {
   for (int D = 0; D < DIM; ++D) {
@@ -36,14 +35,6 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
         f.fluid_cell2 = n2 < g.total && is_flow_cell(e.kind[n2]) ? n2 : n;
         f.solid_on_high_side = side == 0;
         f.normal = gr.normal;
-        // A solid cell whose centre lies on the surface (up to 1e-3 dx) at a corner of the body, e.g. a clamped
-        // corner node on the cell centre, gets the normal of one of the faces meeting there; across a grid face
-        // nearly parallel to that normal (|n_D| < 0.45) the mirror would leave the velocity through the face
-        // unchanged and let mass through the wall. Such a face is mirrored about the grid face instead.
-        if (gr.distance < 1e-3 * g.dx[D] && std::abs(gr.normal[D]) < 0.45) {
-          f.normal = {0, 0, 0};
-          f.normal[D] = side == 0 ? -1.0 : 1.0;  // from the solid cell towards the flow cell
-        }
         f.wall_velocity = gr.wall_velocity;
         const double pf = phi[n], ps = phi[c];
         f.d = pf - ps > 0 ? std::min(1.0, std::max(0.0, pf / (pf - ps))) : 0.5;
@@ -51,6 +42,29 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
       }
     }
   }
+}
+
+// The wall a grid face crosses: the ghost's closest point may lie on another face of the body than the one the
+// grid line F -> G passes through (near an edge or a corner of a box its normal can be perpendicular to the line,
+// and a mirror about it leaves the velocity through the grid face unchanged: mass leaks through the wall). Of the
+// ghost's wall and the flow cell's own wall (its closest surface point: `flow_wall(F, normal, velocity)` returns
+// false when there is none), the one whose normal lies closest to the line is used, and where neither has
+// |n_D| >= 0.2 (a normal nearly perpendicular to the line: a corner) the face is mirrored about the grid face.
+template <int DIM, class FlowWall>
+void orient_wall_faces(EmbeddedState& e, const FlowWall& flow_wall) {
+  for (int D = 0; D < DIM; ++D)
+    for (WallFace& f : e.faces[D]) {
+      std::array<double, 3> n{0, 0, 0}, v{0, 0, 0};
+      const double towards = f.solid_on_high_side ? -1.0 : 1.0;  // n_D of a wall facing the flow cell along D
+      if (flow_wall(f.fluid_cell, n, v) && towards * n[D] > towards * f.normal[D]) {
+        f.normal = n;
+        f.wall_velocity = v;
+      }
+      if (towards * f.normal[D] < 0.2) {
+        f.normal = {0, 0, 0};
+        f.normal[D] = towards;
+      }
+    }
 }
 
 // Thin bodies (EmbeddedState::side_ghosts, fluid_solver/embedded/thin_body.h): a wall face whose solid cell's
