@@ -79,7 +79,7 @@ std::string fmt_snapshot(int k) {
 
 // The embedded and the conforming panel velocity histories converge to each other: the largest difference over
 // the whole run (0 to 1 ms) against the conforming run's peak shrinks with the resolution and is within 10% at
-// 200 x 200 (measured 70% / 16% / 6.8% at 50^2 / 100^2 / 200^2: at the paper's 50 x 50 the hot region is five
+// 200 x 200 (measured 71% / 17% / 9.3% at 50^2 / 100^2 / 200^2: at the paper's 50 x 50 the hot region is five
 // cells across and neither run resolves the blast; peaks 34 / 28 / 26.7 m/s embedded, 21 / 24 / 25.2 conforming).
 TEST(ShockPanel, EmbeddedAndConformingPanelVelocityConverge) {
   double previous = 1e9;
