@@ -9,8 +9,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "common/app/cli_suggest.h"
 #include "common/app/run_driver.h"
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
@@ -53,6 +55,10 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
   app.add_option("--transcript", transcript, "write every message in protobuf text form to FILE");
   app.add_flag("--quiet", quiet, "only warnings and errors");
+  if (const std::string unknown = cosim::app::unknown_option(app, argc, argv); !unknown.empty()) {
+    std::cerr << "coupler: " << unknown << "\nRun with --help for more information.\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }

@@ -133,6 +133,15 @@ int run(const LaunchOptions& opt) {
     return 2;
   }
 
+  // The coupler's ipc socket file is removed however the run ends (zmq leaves it behind).
+  struct SocketFile {
+    fs::path path;
+    ~SocketFile() {
+      std::error_code ignored;
+      if (!path.empty()) fs::remove(path, ignored);
+    }
+  } socket_file{endpoint.rfind("ipc://", 0) == 0 ? fs::path(endpoint.substr(6)) : fs::path()};
+
   const auto command = [&](const std::string& given, const char* exe) {
     std::vector<std::string> argv = split_command(given);
     if (argv.empty()) argv.push_back((opt.bin_dir / exe).string());

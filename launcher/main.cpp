@@ -4,7 +4,9 @@
 
 #include <unistd.h>
 #include <filesystem>
+#include <iostream>
 
+#include "common/app/cli_suggest.h"
 #include "launcher/launch.h"
 
 int main(int argc, char** argv) {
@@ -23,6 +25,14 @@ int main(int argc, char** argv) {
   run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
   run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
   run->add_flag("--quiet", o.quiet, "no progress line");
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string unknown = cosim::app::unknown_subcommand(app, argv[1]);
+    if (unknown.empty()) unknown = cosim::app::unknown_option(*run, argc, argv, 2);
+    if (!unknown.empty()) {
+      std::cerr << "cosim: " << unknown << "\nRun with --help for more information.\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }

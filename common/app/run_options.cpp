@@ -3,6 +3,9 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "common/app/cli_suggest.h"
 
 namespace cosim::app {
 
@@ -18,6 +21,10 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
                  "coupled run: the coupler's endpoint (ipc://PATH or tcp://HOST:PORT); the coupler sets time steps "
                  "and output times");
   app.add_option("--token", opt.token, "coupled run: the per-run token the coupler expects");
+  if (const std::string unknown = unknown_option(app, argc, argv); !unknown.empty()) {
+    std::cerr << name << ": " << unknown << "\nRun with --help for more information.\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -30,7 +30,8 @@ TEST(CoupledScenes, AdvectedBlockCreatesNoFlow) {
     ASSERT_NEAR(h.pressure[i], 1.0, 1e-10) << i;
     ASSERT_NEAR(h.force_x[i], 0.0, 1e-10) << i;
   }
-  EXPECT_GT(h.cx.back() - h.cx.front(), 0.2);  // it did move (more than 2.5 cells)
+  EXPECT_GT(h.cx.back() - h.cx.front(), 0.2);      // it did move (more than 2.5 cells)
+  EXPECT_FALSE(fs::exists(dir / "coupler.sock"));  // the launcher removes the coupler's socket file
   io::Hdf5File last(dir / "fluid" / "fluid_000001.h5", io::Hdf5File::Mode::ReadOnly);
   const auto cat = last.read_doubles("/cell/embedded_category");
   const auto p = last.read_doubles("/cell/gas_pressure");
@@ -121,6 +122,7 @@ TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
   // [s]: the shell running pgrep must not match its own pattern
   const std::string left = "pgrep -f '" + dir.string() + "/[s]cene.yaml' > /dev/null";
   EXPECT_NE(std::system(left.c_str()), 0) << "a process of the run is still alive";
+  EXPECT_FALSE(fs::exists(dir / "coupler.sock"));  // also after a failed run
   io::Hdf5File snap(dir / "fluid" / "fluid_000001.h5", io::Hdf5File::Mode::ReadOnly);
   EXPECT_EQ(snap.read_doubles("/cell/gas_pressure").size(), 160u * 8u);
 }

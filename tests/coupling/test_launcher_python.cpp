@@ -74,6 +74,32 @@ TEST(CouplingLauncher, FailingProcessIsNamedAndNothingIsLeftRunning) {
   EXPECT_FALSE(process_with_argument(run.string()));
 }
 
+// A mistyped command or option is named, with the closest valid one, before anything else is checked; exit 2.
+TEST(CouplingLauncher, UnknownCommandsAndOptionsAreNamedWithASuggestion) {
+  const fs::path dir = test_dir("cli_words");
+  const auto run_exe = [&](const std::string& cmd) {
+    const int rc = std::system((cmd + " > " + (dir / "out.log").string() + " 2>&1").c_str());
+    return std::pair{WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_file(dir / "out.log")};
+  };
+  auto [rc, log] = run_exe(bin("cosim").string() + " frobnicate x.yaml");
+  EXPECT_EQ(rc, 2);
+  EXPECT_NE(log.find("cosim: unknown command 'frobnicate' (commands: run)"), std::string::npos) << log;
+  std::tie(rc, log) = run_exe(bin("cosim").string() + " rn x.yaml");
+  EXPECT_NE(log.find("unknown command 'rn' (did you mean 'run'?)"), std::string::npos) << log;
+  std::tie(rc, log) = run_exe(bin("cosim").string() + " run x.yaml --output y");
+  EXPECT_EQ(rc, 2);
+  EXPECT_NE(log.find("cosim: unknown option '--output' (did you mean '--out'?)"), std::string::npos) << log;
+  for (const char* exe : {"fluid_solver", "solid_solver"}) {
+    std::tie(rc, log) = run_exe(bin(exe).string() + " x.yaml --output y");
+    EXPECT_EQ(rc, 2) << exe;
+    EXPECT_NE(log.find(std::string(exe) + ": unknown option '--output' (did you mean '--out'?)"), std::string::npos)
+        << log;
+  }
+  std::tie(rc, log) = run_exe(bin("coupler").string() + " x.yaml --endpiont ipc://z");
+  EXPECT_EQ(rc, 2);
+  EXPECT_NE(log.find("coupler: unknown option '--endpiont' (did you mean '--endpoint'?)"), std::string::npos) << log;
+}
+
 TEST(CouplingLauncher, SceneWithoutSolidRunsTheFluidAlone) {
   const fs::path dir = test_dir("fluid_only");
   const fs::path scene = dir / "scene.yaml";
