@@ -159,7 +159,8 @@ std::vector<double> Node::get_vector(const std::string& key, std::size_t min_len
   YAML::Node n = at(key);
   if (!n || n.IsNull()) {
     if (fallback) return *fallback;
-    fail(key, fmt::format("a list of {} to {} numbers, but the key is missing", min_len, max_len));
+    fail(key,
+         fmt::format("a list of {} to {} numbers, but the key is missing{}", min_len, max_len, typo_of_missing(key)));
   }
   std::string expected = min_len == max_len ? fmt::format("a list of {} numbers", min_len)
                                             : fmt::format("a list of {} to {} numbers", min_len, max_len);
@@ -185,7 +186,7 @@ std::vector<double> Node::get_vector(const std::string& key, std::size_t min_len
 Node Node::child(const std::string& key) {
   used_.insert(key);
   YAML::Node n = at(key);
-  if (!n || n.IsNull()) fail(key, "a section, but the key is missing");
+  if (!n || n.IsNull()) fail(key, "a section, but the key is missing" + typo_of_missing(key));
   if (!n.IsMap()) fail(key, "a section (key: value mapping), got " + describe(n));
   return Node(n, key_path(key), ctx_);
 }
@@ -225,7 +226,7 @@ double coupled_end_time(Node& root) {
 std::vector<Node> Node::list(const std::string& key) {
   used_.insert(key);
   YAML::Node n = at(key);
-  if (!n || n.IsNull()) fail(key, "a list, but the key is missing");
+  if (!n || n.IsNull()) fail(key, "a list, but the key is missing" + typo_of_missing(key));
   if (!n.IsSequence()) fail(key, "a list, got " + describe(n));
   return Node(n, key_path(key), ctx_).elements();
 }
@@ -235,6 +236,14 @@ std::vector<Node> Node::elements() const {
   std::vector<Node> out;
   for (std::size_t i = 0; i < node_.size(); ++i) out.emplace_back(node_[i], path_ + "." + std::to_string(i), ctx_);
   return out;
+}
+
+std::string Node::typo_of_missing(const std::string& key) const {
+  if (!node_.IsMap()) return "";
+  std::set<std::string> present;
+  for (auto it = node_.begin(); it != node_.end(); ++it) present.insert(it->first.as<std::string>());
+  const std::string best = closest(key, present);
+  return best.empty() ? "" : fmt::format("; the section has '{}': a typo of '{}'?", best, key);
 }
 
 void Node::finish() const {

@@ -81,6 +81,8 @@ class Node {
 
   // "file:line: path" prefix for messages about this node or one of its keys.
   std::string where(const std::string& key = "") const;
+  // For a missing key: "; the section has 'cell': a typo of 'cells'?" when a key it does have is close, else "".
+  std::string typo_of_missing(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
 
   // The raw YAML of a key (null when missing), for lenient reads of another reader's section.

@@ -71,7 +71,8 @@ template <class T>
 T Node::require(const std::string& key, Check<T> check) {
   used_.insert(key);
   YAML::Node n = at(key);
-  if (!n || n.IsNull()) fail(key, std::string("a value (") + detail::type_name<T>() + "), but the key is missing");
+  if (!n || n.IsNull())
+    fail(key, std::string("a value (") + detail::type_name<T>() + "), but the key is missing" + typo_of_missing(key));
   return get<T>(key, T{}, check);
 }
 
