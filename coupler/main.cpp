@@ -14,6 +14,7 @@
 
 #include "common/app/cli_suggest.h"
 #include "common/app/run_driver.h"
+#include "common/app/version.h"
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/scene_hash.h"
@@ -29,6 +30,8 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
   const double n = std::max<long>(s.cycles, 1);
   nlohmann::json j;
   j["status"] = s.status;
+  j["version"] = cosim::app::version();
+  j["git_commit"] = cosim::app::git_commit();
   j["scheme"] = coupling::scheme_name(scheme);  // pipelined: solid and fluid work overlap (CycleTiming::comm)
   j["message"] = s.message;
   j["cycles"] = s.cycles;
@@ -55,6 +58,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
   app.add_option("--transcript", transcript, "write every message in protobuf text form to FILE");
   app.add_flag("--quiet", quiet, "only warnings and errors");
+  app.set_version_flag("--version", cosim::app::version_line("coupler"));
   if (const std::string unknown = cosim::app::unknown_option(app, argc, argv); !unknown.empty()) {
     std::cerr << "coupler: " << unknown << "\nRun with --help for more information.\n";
     return 2;

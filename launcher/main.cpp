@@ -7,11 +7,13 @@
 #include <iostream>
 
 #include "common/app/cli_suggest.h"
+#include "common/app/version.h"
 #include "launcher/launch.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"cosim: runs a scene's fluid solver, solid solver and coupler"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", cosim::app::version_line("cosim"));
   auto* run = app.add_subcommand("run", "run a scene (fluid alone when it has no solid: section)");
   cosim::launcher::LaunchOptions o;
   std::string out;

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "common/app/cli_suggest.h"
+#include "common/app/version.h"
 
 namespace cosim::app {
 
@@ -21,6 +22,7 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
                  "coupled run: the coupler's endpoint (ipc://PATH or tcp://HOST:PORT); the coupler sets time steps "
                  "and output times");
   app.add_option("--token", opt.token, "coupled run: the per-run token the coupler expects");
+  app.set_version_flag("--version", version_line(name));
   if (const std::string unknown = unknown_option(app, argc, argv); !unknown.empty()) {
     std::cerr << name << ": " << unknown << "\nRun with --help for more information.\n";
     return 2;

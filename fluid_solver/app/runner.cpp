@@ -4,6 +4,7 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include "common/app/version.h"
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
@@ -18,6 +19,8 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["status"] = rec.status;
   if (!rec.error.empty()) j["error"] = rec.error;
   j["scene"] = s.name;
+  j["version"] = app::version();
+  j["git_commit"] = app::git_commit();
   j["dimension"] = s.dim;
   j["cells"] = std::vector<int>(s.cells.begin(), s.cells.begin() + s.dim);
   j["phases"] = s.num_phases();

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <memory>
 
+#include "common/app/version.h"
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
@@ -24,6 +25,8 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   j["status"] = rec.status;
   if (!rec.error.empty()) j["error"] = rec.error;
   j["scene"] = s.name;
+  j["version"] = app::version();
+  j["git_commit"] = app::git_commit();
   j["dimension"] = s.dim;
   j["elements"] = sim.mesh().num_elements;
   j["nodes"] = sim.mesh().num_nodes;

@@ -55,6 +55,10 @@ TEST(TungstenBlast, CompletesAndConservesEachPhaseApartFromTheBoundaryFluxes) {
   ASSERT_EQ(cosim_run(scene_file("tungsten_blast_3d"), dir, kCiSize), 0) << run_logs(dir);
   const nlohmann::json f = read_json(dir / "fluid" / "summary.json");
   EXPECT_EQ(f["status"], "completed");
+  for (const char* sub : {"fluid/summary.json", "solid/summary.json", "coupler/coupler_summary.json"}) {
+    const nlohmann::json j = read_json(dir / sub);  // every summary names the build
+    EXPECT_TRUE(j.contains("version") && j.contains("git_commit")) << sub;
+  }
   const auto& t = f["totals"];
   for (int k = 0; k < 2; ++k) {
     const double m0 = t["start"][k]["mass"], m1 = t["end"][k]["mass"];

@@ -75,7 +75,8 @@ TEST(CouplingLauncher, FailingProcessIsNamedAndNothingIsLeftRunning) {
 }
 
 // A mistyped command or option is named, with the closest valid one, before anything else is checked; exit 2.
-TEST(CouplingLauncher, UnknownCommandsAndOptionsAreNamedWithASuggestion) {
+// --version answers on every executable.
+TEST(CouplingLauncher, UnknownCommandsAndOptionsAreNamedWithASuggestionAndVersionAnswers) {
   const fs::path dir = test_dir("cli_words");
   const auto run_exe = [&](const std::string& cmd) {
     const int rc = std::system((cmd + " > " + (dir / "out.log").string() + " 2>&1").c_str());
@@ -94,6 +95,13 @@ TEST(CouplingLauncher, UnknownCommandsAndOptionsAreNamedWithASuggestion) {
     EXPECT_EQ(rc, 2) << exe;
     EXPECT_NE(log.find(std::string(exe) + ": unknown option '--output' (did you mean '--out'?)"), std::string::npos)
         << log;
+  }
+  // --version on every executable: the version and the commit the build came from
+  for (const char* exe : {"cosim", "fluid_solver", "solid_solver", "coupler"}) {
+    std::tie(rc, log) = run_exe(bin(exe).string() + " --version");
+    EXPECT_EQ(rc, 0) << exe;
+    EXPECT_EQ(log.rfind(std::string(exe) + " 0.", 0), 0u) << log;
+    EXPECT_NE(log.find("(git "), std::string::npos) << log;
   }
   std::tie(rc, log) = run_exe(bin("coupler").string() + " x.yaml --endpiont ipc://z");
   EXPECT_EQ(rc, 2);
