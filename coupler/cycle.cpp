@@ -166,7 +166,7 @@ struct Loop {
         output(n);
         ++next_out;
       }
-      history.progress(n, t, cfg.t_end);
+      history.progress(n, t, cfg.t_end, dt);
       if (t >= cfg.t_end * (1.0 - 1e-14) || next_out >= cfg.output_times.size()) {
         sum.message = fmt::format("completed: t = {:.9g} s after {} cycles", t, n);
         break;
@@ -180,7 +180,7 @@ struct Loop {
       dt = choose_dt(proposal, cfg.dt_max, t, cfg.output_times[next_out]);
       if (!(dt > 0)) throw coupling::ProtocolError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s", dt, t));
     }
-    history.progress(sum.cycles, t, cfg.t_end, true);
+    history.progress(sum.cycles, t, cfg.t_end, dt, true);
     hub.stop_all(sum.message, false);
     close_timing();
   }

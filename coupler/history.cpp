@@ -52,7 +52,7 @@ void History::record_timing(long cycle, const CycleTiming& t) {
                          t.comm());
 }
 
-void History::progress(long cycle, double time, double t_end, bool force) {
+void History::progress(long cycle, double time, double t_end, double dt, bool force) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   if (!force && now - last_progress_ < 0.5) return;
   last_progress_ = now;
@@ -61,7 +61,7 @@ void History::progress(long cycle, double time, double t_end, bool force) {
   const auto tmp = dir_ / "progress.txt.tmp";
   {
     std::ofstream f(tmp);
-    f << fmt::format("{} {:.9g} {:.9g}\n", cycle, time, t_end);
+    f << fmt::format("{} {:.9g} {:.9g} {:.9g}\n", cycle, time, t_end, dt);
   }
   std::error_code ec;
   std::filesystem::rename(tmp, dir_ / "progress.txt", ec);

@@ -32,7 +32,7 @@ class History {
   explicit History(const std::filesystem::path& dir);  // throws CouplingError naming the file
   void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st);
   void record_timing(long cycle, const CycleTiming& timing);
-  void progress(long cycle, double time, double t_end, bool force = false);
+  void progress(long cycle, double time, double t_end, double dt, bool force = false);
   // One interface snapshot; skipped when the faces carry no vertex data (or triangles).
   void snapshot(long cycle, double time, const coupling::Faces& faces, const coupling::InterfaceStates& st);
 

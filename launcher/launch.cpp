@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "common/config/config.h"
+#include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
 
@@ -32,14 +33,17 @@ void on_signal(int) { g_stop = true; }
 
 double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-// Progress from the coupler's progress.txt ("cycle t t_end").
+// Progress from the coupler's progress.txt ("cycle t t_end dt"): cycle, t / t_end, dt, wall per cycle, ETA.
 std::string progress_text(const fs::path& file, double elapsed) {
   std::ifstream in(file);
   long cycle = 0;
-  double t = 0, t_end = 0;
+  double t = 0, t_end = 0, dt = 0;
   if (!(in >> cycle >> t >> t_end) || t_end <= 0) return fmt::format("starting ... {:.0f} s", elapsed);
-  return fmt::format("cycle {}  t = {:.6g} / {:.6g} s ({:.0f}%)  wall {:.0f} s", cycle, t, t_end, 100.0 * t / t_end,
-                     elapsed);
+  in >> dt;
+  const double eta = t > 0 ? elapsed * (t_end - t) / t : -1.0;
+  return fmt::format("cycle {}  t = {:.6g} / {:.6g} s ({:.0f}%)  dt {:.3g} s  {:.3g} ms/cycle  wall {}  ETA {}", cycle,
+                     t, t_end, 100.0 * t / t_end, dt, cycle > 0 ? 1e3 * elapsed / cycle : 0.0,
+                     util::format_duration(elapsed), util::format_duration(eta));
 }
 }  // namespace
 
@@ -231,11 +235,15 @@ int run(const LaunchOptions& opt) {
           return 1;
         }
     }
-    if (!opt.quiet && now_s() - last_progress > 0.5) {
+    // On a terminal the line is rewritten twice a second; in a log (stderr not a terminal) a line every
+    // --progress-every seconds (30).
+    const double every = tty ? 0.5 : opt.progress_every;
+    if (!opt.quiet && now_s() - last_progress > every && now_s() - start_time > (tty ? 0.0 : every)) {
       last_progress = now_s();
       const std::string line = coupled ? progress_text(out / "coupler" / "progress.txt", now_s() - start_time)
                                        : fmt::format("fluid running ... {:.0f} s", now_s() - start_time);
       if (tty) std::cerr << "\r" << line << "\033[K" << std::flush;
+      else std::cerr << "cosim: " << line << "\n" << std::flush;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

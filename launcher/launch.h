@@ -18,6 +18,7 @@ struct LaunchOptions {
   std::string fluid_cmd, solid_cmd, coupler_cmd;  // empty: <dir of cosim>/fluid_solver etc.; split on spaces
   std::filesystem::path bin_dir;                  // where the default executables are
   bool quiet = false;
+  double progress_every = 30;  // [s] between progress lines when stderr is not a terminal
 };
 
 // Runs to completion; returns 0, or the failing process's exit code (1 when that is 0), 2 for bad input,

@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
   run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
   run->add_flag("--quiet", o.quiet, "no progress line");
+  run->add_option("--progress-every", o.progress_every,
+                  "seconds between progress lines when stderr is not a terminal (a log), default 30")
+      ->check(CLI::PositiveNumber);
   if (argc > 1 && argv[1][0] != '-') {
     std::string unknown = cosim::app::unknown_subcommand(app, argv[1]);
     if (unknown.empty()) unknown = cosim::app::unknown_option(*run, argc, argv, 2);

@@ -20,9 +20,14 @@ double Progress::elapsed() const {
 }
 
 std::string format_duration(double s) {
-  if (s < 60) return fmt::format("{:.0f}s", s);
-  if (s < 3600) return fmt::format("{:.0f}m{:02.0f}s", std::floor(s / 60), std::fmod(s, 60));
-  return fmt::format("{:.0f}h{:02.0f}m", std::floor(s / 3600), std::fmod(s, 3600) / 60);
+  if (!(s >= 0) || !std::isfinite(s)) return "?";
+  if (s < 59.5) return fmt::format("{:.0f}s", s);
+  if (s < 3570) {  // whole seconds first, so that 3m59.7s is 4m00s and never 3m60s
+    const long t = std::lround(s);
+    return fmt::format("{}m{:02d}s", t / 60, static_cast<int>(t % 60));
+  }
+  const long m = std::lround(s / 60);
+  return fmt::format("{}h{:02d}m", m / 60, static_cast<int>(m % 60));
 }
 
 void Progress::update(long step, double t, double t_end, const std::string& extra) {

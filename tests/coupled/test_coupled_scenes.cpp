@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "common/io/hdf5_file.h"
@@ -88,6 +89,23 @@ TEST(CoupledScenes, PistonSceneTranscriptOfTheFirstCycles) {
 
 // A solver killed in the middle of a real coupled run: the launcher and the others stop within 5 s, the
 // launcher names the process, nothing is left running, the snapshots written so far stay readable.
+// In a log (stderr not a terminal) the launcher writes a progress line every --progress-every seconds: cycle,
+// t / t_end, dt, wall per cycle, ETA.
+TEST(CoupledScenes, ProgressLinesInALog) {
+  const fs::path dir = run_dir("progress");
+  const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
+                          dir.string() + " --set coupling.time.end=0.05 --progress-every 0.2 2> " + dir.string() +
+                          ".err > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(fs::path(dir.string() + ".err"));
+  std::istringstream err(read_text(fs::path(dir.string() + ".err")));
+  int lines = 0;
+  for (std::string l; std::getline(err, l);)
+    if (l.rfind("cosim: cycle ", 0) == 0 && l.find(" / 0.05 s (") != std::string::npos &&
+        l.find(" ms/cycle") != std::string::npos && l.find("ETA ") != std::string::npos)
+      ++lines;
+  EXPECT_GE(lines, 2) << read_text(fs::path(dir.string() + ".err"));
+}
+
 TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
   const fs::path dir = run_dir("killed");
   const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
