@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
+#include <cstdlib>
 
 #include "common/app/version.h"
 #include "common/config/config.h"
@@ -34,6 +35,7 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["cell_updates_per_s"] = rec.wall > 0 ? updates / rec.wall : 0.0;
   j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());
   j["threads"] = omp_get_max_threads();
+  j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
   const nlohmann::json end_totals = totals_json(s, sim.totals());
   const std::vector<PhaseTotals> inflow = sim.boundary_inflow();
   // created = end - start - boundary_inflow, per phase: what the scheme itself made (round-off without bodies).

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/app/threads.h"
 #include "fluid_solver/core/boundary.h"
 #include "fluid_solver/core/dem_face.h"
 #include "fluid_solver/core/ghost_fill.h"
@@ -43,7 +44,8 @@ class Solver final : public FluidSimulation {
     U0_.resize(Lay::kCons, g_.total);
     R_.resize(Lay::kCons, g_.total);
     W_.resize(Lay::kPrim, g_.total);
-    if (scene.threads > 0) omp_set_num_threads(scene.threads);
+    // The scene's (or --threads) count, else one thread per 16 rows of cells along x (1D: one row, one thread).
+    omp_set_num_threads(scene.threads > 0 ? scene.threads : app::threads_for(static_cast<long>(g_.n[1]) * g_.n[2], 16));
     allocate_scratch();
     if (scene.reconstruction == Reconstruction::FirstOrder) mode_ = ReconMode::First;
     else if (scene.limiter == Limiter::Minmod) mode_ = ReconMode::Minmod;

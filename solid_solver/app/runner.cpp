@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
+#include <cstdlib>
 
 #include <atomic>
 #include <cmath>
@@ -39,6 +40,7 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   j["zone_cycles_per_s"] = rec.wall > 0 ? zc / rec.wall : 0.0;
   j["bytes_per_element"] = sim.bytes_per_element();
   j["threads"] = omp_get_max_threads();
+  j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
   const EnergyBudget e = sim.energy();
   const double e0 = rec.start.total();
   j["energy"] = {{"start", energy_json(rec.start)},

@@ -151,6 +151,13 @@ TEST(FluidSolverExecutable, BadInputExitsNonZeroWithMessage) {
   EXPECT_NE(err.find("YAML syntax error"), std::string::npos) << err;
   EXPECT_EQ(run_solver(kGood, out, err), 0) << err;
   EXPECT_TRUE(std::filesystem::exists(out / "summary.json"));
+  {  // a 1D run has one row of cells: one thread, and waiting threads sleep (the user set no policy)
+    std::ifstream in(out / "summary.json");
+    const std::string summary((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(summary.find("\"threads\": 1,"), std::string::npos) << summary;
+    if (!std::getenv("OMP_WAIT_POLICY"))
+      EXPECT_NE(summary.find("\"omp_wait_policy\": \"PASSIVE\""), std::string::npos) << summary;
+  }
   EXPECT_TRUE(std::filesystem::exists(out / "fluid.xmf"));
   std::filesystem::remove_all(out);
 }
