@@ -186,6 +186,9 @@ int run(const LaunchOptions& opt) {
   // Relative file names in the scene (a Gmsh mesh) are the user's, relative to the scene they gave; the solvers
   // read the copy in the run directory (config::scene_base_dir).
   ::setenv("COSIM_SCENE_DIR", fs::absolute(opt.scene).parent_path().string().c_str(), 1);
+  // ... and their messages name the user's file, not the copy (config::load_file).
+  ::setenv("COSIM_SCENE_FILE", opt.scene.c_str(), 1);
+  ::setenv("COSIM_SCENE_COPY", scene.string().c_str(), 1);
 
   const auto stop_all = [&] {
     for (auto& c : children) stop(c, 3.0);

@@ -293,7 +293,14 @@ Node load_file(const std::string& file, const std::vector<std::string>& override
   if (!in) throw ConfigError(fmt::format("{}: cannot open scene file", file));
   std::stringstream ss;
   ss << in.rdbuf();
-  return load_string(ss.str(), file, overrides);
+  // Under `cosim run` the solvers read the launcher's copy of the scene: messages name the user's file
+  // ($COSIM_SCENE_FILE; the copy is $COSIM_SCENE_COPY, line for line the same).
+  std::string name = file;
+  const char* copy = std::getenv("COSIM_SCENE_COPY");
+  const char* given = std::getenv("COSIM_SCENE_FILE");
+  std::error_code ec;
+  if (copy && given && std::filesystem::equivalent(file, copy, ec)) name = given;
+  return load_string(ss.str(), name, overrides);
 }
 
 Node load_string(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -104,6 +106,28 @@ TEST(CoupledScenes, ProgressLinesInALog) {
         l.find(" ms/cycle") != std::string::npos && l.find("ETA ") != std::string::npos)
       ++lines;
   EXPECT_GE(lines, 2) << read_text(fs::path(dir.string() + ".err"));
+}
+
+// A mistake in the scene found by a solver under `cosim run` names the user's file and line, not the launcher's
+// copy in the run directory.
+TEST(CoupledScenes, SceneErrorsNameTheUsersFile) {
+  const fs::path dir = run_dir("typo");
+  fs::create_directories(dir);
+  std::string text = read_text(scene_file("piston_2d"));
+  const std::size_t at = text.find("      density: 100.0");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 20, "      densty: 100.0");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const fs::path user = dir / "my_piston.yaml";
+  std::ofstream(user) << text;
+  EXPECT_EQ(cosim_run(user, dir / "run"), 2);
+  const std::string log = read_text(fs::path((dir / "run").string() + ".log"));
+  EXPECT_NE(log.find(user.string() + ":" + std::to_string(line) +
+                     ": solid.blocks.0.densty: unknown key (did you mean "
+                     "'density'?)"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("run/scene.yaml:"), std::string::npos) << log;
 }
 
 TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
