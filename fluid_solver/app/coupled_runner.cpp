@@ -26,7 +26,6 @@ int run_fluid_coupled(const RunOptions& opt) {
         opt.scene_file);
     return 2;
   }
-  if (!app::make_output_directory(opt.out_dir)) return 4;
   std::unique_ptr<FluidSimulation> sim;
   std::unique_ptr<coupled::CoupledBoundary> boundary;
   try {
@@ -36,6 +35,7 @@ int run_fluid_coupled(const RunOptions& opt) {
     spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
     return 2;
   }
+  if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders
   app::install_interrupt_handlers();
 
   std::vector<std::string> phase_names;

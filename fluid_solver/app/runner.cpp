@@ -83,7 +83,6 @@ int run_fluid(const RunOptions& opt) {
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
-  if (!app::make_output_directory(opt.out_dir)) return 4;
 
   std::unique_ptr<FluidSimulation> sim;
   try {
@@ -92,6 +91,7 @@ int run_fluid(const RunOptions& opt) {
     spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
     return 2;
   }
+  if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders
   spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim, sim->interior_cells(),
                scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
 

@@ -73,10 +73,6 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
   if (!loaded) return r;
   r.scene = std::move(*loaded);
   if (r.scene.threads > 0) omp_set_num_threads(r.scene.threads);
-  if (!app::make_output_directory(opt.out_dir)) {
-    r.exit_code = 4;
-    return r;
-  }
   try {
     r.sim = std::make_unique<Simulation>(r.scene);
   } catch (const StateError& e) {
@@ -84,6 +80,10 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
     r.exit_code = 3;
   } catch (const std::exception& e) {
     spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
+  }
+  if (r.sim && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
+    r.sim.reset();
+    r.exit_code = 4;
   }
   return r;
 }

@@ -86,6 +86,7 @@ TEST(SolidInput, ExecutableExitCodes) {
   const fs::path exe = fs::path(COSIM_BINARY_DIR) / "bin" / "solid_solver";
   if (!fs::exists(exe)) GTEST_SKIP() << "solid_solver not built";
   const fs::path dir = fs::temp_directory_path() / "solid_input_test";
+  fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path good = dir / "good.yaml", bad = dir / "bad.yaml", broken = dir / "broken.yaml";
   std::ofstream(good) << kGood;
@@ -100,6 +101,15 @@ TEST(SolidInput, ExecutableExitCodes) {
   EXPECT_EQ(run_solver((dir / "missing.yaml").string() + " --out " + (dir / "o3").string() + " --quiet", log), 2);
   EXPECT_EQ(run_solver(good.string() + " --out " + (dir / "o4").string() + " --quiet --set solid.time.end=-2", log), 2);
   EXPECT_NE(log.find("--set solid.time.end"), std::string::npos) << log;
+  for (const char* o : {"o1", "o2", "o3", "o4"}) EXPECT_FALSE(fs::exists(dir / o)) << o;  // no empty run folder
+  // A scene that parses but cannot be set up (its Gmsh mesh does not exist): exit 2, no output folder either.
+  EXPECT_EQ(run_solver(good.string() + " --out " + (dir / "o7").string() +
+                           " --quiet --set 'solid.mesh={type: gmsh, file: nowhere.msh}'",
+                       log),
+            2)
+      << log;
+  EXPECT_NE(log.find("nowhere.msh"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "o7"));
   // A good run: summary.json with the energy budget.
   EXPECT_EQ(run_solver(good.string() + " --out " + (dir / "o5").string() + " --quiet", log), 0) << log;
   std::ifstream in(dir / "o5" / "summary.json");
