@@ -1,4 +1,4 @@
-// Interface conditions per face and per phase (paper section 7, eqs. 17-22; docs/numerics.md §4.1).
+// Interface conditions per face and per phase (paper section 7, eqs. 17-22; docs/methods.md §4.1).
 // Pure function: no I/O, no state. Conventions: n is the face's outward normal of the solid (pointing into
 // the fluid); v_s = velocity . n, sigma_s = n.sigma.n (tension positive), z_s = rho c of the solid (+inf: rigid);
 // per phase k: v_f = u_k . n, p_f = p_k (sigma_f = -p_f), z_f = rho_k c_k. With w_s = z_s/(z_f+z_s), w_f = 1-w_s:

@@ -12,9 +12,9 @@ StiffenedGas with_reference_temperature(StiffenedGas sg, double rho, double p, d
 namespace {
 
 // Stiffened-gas fits of metals match the weak-shock slope and the reference sound speed
-// (docs/numerics.md §7.4: gamma = 4s - 1, pinf = rho0 c0^2 / gamma - p0); Mie-Grueneisen data from
-// docs/numerics.md §7.3 (Kinslow, Steinberg). Heat capacities are the table values. The metals' temperatures
-// are fitted to their reference state (docs/numerics.md §7.5); water's fit would give it a negative thermal
+// (docs/methods.md §7.4: gamma = 4s - 1, pinf = rho0 c0^2 / gamma - p0); Mie-Grueneisen data from
+// docs/methods.md §7.3 (Kinslow, Steinberg). Heat capacities are the table values. The metals' temperatures
+// are fitted to their reference state (docs/methods.md §7.5); water's fit would give it a negative thermal
 // expansion (its a0 < 0), so water keeps a0 = 0 and is given by its density.
 std::vector<Material> build_library() {
   std::vector<Material> lib = {

@@ -1,5 +1,5 @@
 // A small material library: named parameter sets for the EOS of the fluid (stiffened gas) and
-// the structure (Mie-Grueneisen), docs/numerics.md §7.1-7.4.
+// the structure (Mie-Grueneisen), docs/methods.md §7.1-7.4.
 #pragma once
 
 #include <optional>

@@ -1,9 +1,9 @@
-// Stiffened-gas equation of state (docs/numerics.md §7.2); the ideal gas is the case pinf = 0, q = 0.
+// Stiffened-gas equation of state (docs/methods.md §7.2); the ideal gas is the case pinf = 0, q = 0.
 //   p = (gamma-1) rho (e - q) - gamma pinf,  c^2 = gamma (p + pinf) / rho,
 //   T = (p + pinf - a0 rho^gamma) / ((gamma-1) rho cv).
 // a0 = 0 is the usual temperature. A condensed material with its true heat capacity cv would then be far from
 // its density at room temperature (tungsten: 35x), so its library entry fits a0 > 0 to the reference state
-// (docs/numerics.md §7.5): the entropy is s = cv ln(A - a0) with A = (p + pinf) / rho^gamma, which keeps the
+// (docs/methods.md §7.5): the entropy is s = cv ln(A - a0) with A = (p + pinf) / rho^gamma, which keeps the
 // isentropes of the stiffened gas (the flow is unchanged), keeps cv, and puts T(rho_ref, p_ref) = T_ref.
 // A plain struct with inline functions: it is called in the innermost loops.
 #pragma once

@@ -1,4 +1,4 @@
-// Exact Riemann solver, ideal and stiffened gas (Toro ch. 4; docs/numerics.md §7.2 and §8.1).
+// Exact Riemann solver, ideal and stiffened gas (Toro ch. 4; docs/methods.md §7.2 and §8.1).
 #include "common/exact/exact_riemann.h"
 
 #include <algorithm>
@@ -13,13 +13,13 @@ namespace {
 constexpr double kTol = 1e-13;  // relative tolerance on q = p - p_min (distance to cavitation)
 constexpr int kMaxIter = 500;
 
-// One side K of the problem in shifted-pressure form P = p + pinf_K (docs/numerics.md §8.1). The star
+// One side K of the problem in shifted-pressure form P = p + pinf_K (docs/methods.md §8.1). The star
 // pressure is iterated as q = p* - p_min >= 0 with p_min = -min(pinf_L, pinf_R), the pressure at
 // which the softer side cavitates, so that P*_K = q + shift_K keeps full relative precision there.
 struct Side {
   double rho, u, p, g, pinf;
   double P;      // p_K + pinf_K
-  double c;      // sound speed, c^2 = g P / rho (docs/numerics.md §7.2)
+  double c;      // sound speed, c^2 = g P / rho (docs/methods.md §7.2)
   double A;      // Toro eq. 4.8: A_K = 2 / ((g + 1) rho_K)
   double B;      // Toro eq. 4.8: B_K = (g - 1)/(g + 1) P_K
   double shift;  // P*_K = q + shift, shift = pinf_K + p_min >= 0

@@ -1,10 +1,10 @@
 // Exact Riemann solver for the 1D Euler equations with ideal / stiffened-gas EOS.
 //
 // Each side K of the initial discontinuity has its own material (gamma_K, pinf_K) with
-//   p = (gamma - 1) rho e - gamma pinf,   c^2 = gamma (p + pinf) / rho   (docs/numerics.md §7.2).
+//   p = (gamma - 1) rho e - gamma pinf,   c^2 = gamma (p + pinf) / rho   (docs/methods.md §7.2).
 // For a stiffened gas the shock Hugoniot and the isentropes are those of an ideal gas written in
 // the shifted pressure P = p + pinf, so Toro's ch. 4 solver applies side by side with p -> p +
-// pinf_K (docs/numerics.md §8.1). Vacuum generation (Toro 4.6) is supported for ideal gases only.
+// pinf_K (docs/methods.md §8.1). Vacuum generation (Toro 4.6) is supported for ideal gases only.
 #pragma once
 
 #include <vector>

@@ -1,7 +1,7 @@
-// Quasi-static reference for a piston between two gas chambers (docs/numerics.md §8.2): each chamber uniform and
+// Quasi-static reference for a piston between two gas chambers (docs/methods.md §8.2): each chamber uniform and
 // isentropic, so the piston displacement x(t) (positive to the right) obeys
 //   (m + m_extra) x'' = A [ pL0 (VL0 / (VL0 + A x))^gamma - pR0 (VR0 / (VR0 - A x))^gamma ],  x(0) = x'(0) = 0.
-// m_extra = 0 is the ODE of docs/numerics.md §8.2; m_extra = (mL_gas + mR_gas)/3 adds the kinetic energy of the gas
+// m_extra = 0 is the ODE of docs/methods.md §8.2; m_extra = (mL_gas + mR_gas)/3 adds the kinetic energy of the gas
 // with a linear velocity profile in each chamber (Rayleigh's effective mass of a spring), the first-order
 // correction for gas inertia. Integrated with classical RK4; x(t) between steps by cubic Hermite interpolation.
 // Shared by the solid solver's conforming-mesh piston test and the coupled piston scenes.

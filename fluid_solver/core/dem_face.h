@@ -1,4 +1,4 @@
-// Face contributions of the Discrete Equation Method (docs/numerics.md §2.3-2.4, §2.6; Abgrall & Saurel
+// Face contributions of the Discrete Equation Method (docs/methods.md §2.3-2.4, §2.6; Abgrall & Saurel
 // 2003, Chinnayya et al. 2004) for one face with normal e_D, left state "-" and right state "+".
 //
 // Same-phase contacts (k,k) carry only a conservative flux (the scene's flux: AUFS by default).
@@ -31,7 +31,7 @@ template <int DIM, int NP, int D>
 inline void cross_pair(const PhaseState<DIM>& Wp, const eos::StiffenedGas& ep, int p, const PhaseState<DIM>& Wq,
                        const eos::StiffenedGas& eq, double S, FaceResult<DIM, NP>& r) {
   const HllcResult<DIM> h = hllc_flux<DIM, D>(Wp, ep, Wq, eq);
-  const int owner = h.ustar > 0.0 ? p : 1 - p;  // phase at x/t = 0 (docs/numerics.md §2.3(c))
+  const int owner = h.ustar > 0.0 ? p : 1 - p;  // phase at x/t = 0 (docs/methods.md §2.3(c))
   PhaseFlux<DIM>& f = r.flux[owner];
   f.mass += S * h.flux.mass;
   for (int d = 0; d < DIM; ++d) f.mom[d] += S * h.flux.mom[d];
@@ -52,7 +52,7 @@ inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[
   if constexpr (NP == 1) {
     r.flux[0] = same_phase_flux<FK, DIM, D>(sameL[0], sameR[0], eos[0]);
   } else {
-    // Contact fractions (docs/numerics.md §2.3(a)).
+    // Contact fractions (docs/methods.md §2.3(a)).
     const double S00 = std::min(aL, aR), S11 = std::min(1.0 - aL, 1.0 - aR);
     const double S01 = std::max(0.0, aL - aR), S10 = std::max(0.0, aR - aL);
     for (int k = 0; k < NP; ++k) r.flux[k] = PhaseFlux<DIM>{};
@@ -70,7 +70,7 @@ inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[
   }
 }
 
-// Intra-cell Lagrangian term of second-order DEM (docs/numerics.md §2.6 step 3): the cross contacts
+// Intra-cell Lagrangian term of second-order DEM (docs/methods.md §2.6 step 3): the cross contacts
 // between a cell's left-edge state (m) and right-edge state (p) both lie inside the cell.
 template <int DIM, int D>
 inline Lagrangian intra_cell_term(const PhaseState<DIM> (&Wm)[2], double am, const PhaseState<DIM> (&Wp)[2], double ap,

@@ -16,7 +16,7 @@ enum class CellKind : std::uint8_t { Fluid = 0, FluidCut = 1, SolidCut = 2, Ghos
 
 inline bool is_flow_cell(std::uint8_t k) { return k <= static_cast<std::uint8_t>(CellKind::FluidCut); }
 
-// A ghost or solid-cut cell: its state comes from the image point (paper step 3, docs/numerics.md §5.3).
+// A ghost or solid-cut cell: its state comes from the image point (paper step 3, docs/methods.md §5.3).
 struct GhostRecord {
   std::size_t cell = 0;                   // padded cell index
   std::array<double, 3> normal{0, 0, 0};  // unit normal at the boundary intercept, solid -> fluid

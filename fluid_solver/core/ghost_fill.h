@@ -1,4 +1,4 @@
-// Ghost and solid-cut cells from image points (paper section 8, step 3; docs/numerics.md §5.3): every
+// Ghost and solid-cut cells from image points (paper section 8, step 3; docs/methods.md §5.3): every
 // phase's density, pressure and volume fraction are interpolated at the image point; the velocity
 // keeps the interpolated tangential part and its normal part relative to the wall is extrapolated
 // linearly through the wall (u_G,n - u_w,n = -d_G/(L - d_G) (u_IP,n - u_w,n); the mirror image

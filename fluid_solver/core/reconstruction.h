@@ -1,5 +1,5 @@
 // MUSCL slope limiters (slopes are per cell, i.e. already multiplied by dx) and the low-Mach
-// correction of reconstructed velocities (paper eqs. 10-11, Thornber et al. 2008; docs/numerics.md §3).
+// correction of reconstructed velocities (paper eqs. 10-11, Thornber et al. 2008; docs/methods.md §3).
 #pragma once
 
 #include <algorithm>

@@ -393,7 +393,7 @@ class Solver final : public FluidSimulation {
   // Paper steps 5-6 on the reconstructed edge states of one face row: at every face between a
   // flow cell and a ghost/solid-cut cell, the solid-side state becomes the mirror of the flow-side
   // state about the interface moving with u*: (alpha, rho, u - 2 ((u - u*).n) n, p) per phase, so
-  // that the face Riemann problem has its contact exactly at u* (docs/numerics.md §5.4). u*.n is the
+  // that the face Riemann problem has its contact exactly at u* (docs/methods.md §5.4). u*.n is the
   // interface velocity (first order) or its d-weighted extrapolation to the face (eqs. 23-26).
   template <int D>
   void mirror_wall_faces(std::size_t base, int len, double* left_edges, int left_off, double* right_edges,
@@ -515,7 +515,7 @@ class Solver final : public FluidSimulation {
   static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
 
   // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
-  // (same operators as relax_velocity / relax_pressure_kernel, docs/numerics.md §2.5).
+  // (same operators as relax_velocity / relax_pressure_kernel, docs/methods.md §2.5).
   template <bool VRELAX, bool PRELAX>
   void relax_row(std::size_t base, int len) {
     const double amin = scene_.exchange.alpha_min;
@@ -938,7 +938,7 @@ class Solver final : public FluidSimulation {
     }
   }
 
-  // Adds the second-order intra-cell Lagrangian term of the face's right cell (docs/numerics.md §2.6 step 3).
+  // Adds the second-order intra-cell Lagrangian term of the face's right cell (docs/methods.md §2.6 step 3).
   template <int D, ReconMode RM>
   Lagrangian add_intra_cell(const PhaseState<DIM> (&R)[NP], double aR, const double* right_edges, int e,
                             Lagrangian right) const {

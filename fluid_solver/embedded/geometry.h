@@ -1,4 +1,4 @@
-// One cycle of the embedded-boundary geometry (paper section 6 and section 8 step 2; docs/numerics.md
+// One cycle of the embedded-boundary geometry (paper section 6 and section 8 step 2; docs/methods.md
 // §5.1-5.2): interface segments, narrow-band signed distance at cell centres and nodes, cell
 // categories (Table 1), ghost / solid-cut image points, side images of thin bodies, with a timing breakdown.
 // Independent of the flow solver's state arrays: input is a Grid and a Surface, output plain arrays.

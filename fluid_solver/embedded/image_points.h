@@ -1,13 +1,13 @@
 // Boundary intercept, image point and interpolation stencil of every ghost and solid-cut cell
-// (docs/numerics.md §5.1-5.2; paper section 8 step 3):
+// (docs/methods.md §5.1-5.2; paper section 8 step 3):
 //   x_BI = closest surface point,  n = (x_BI - x_G)/|phi_G| (= grad phi),  x_IP = x_G + 2|phi_G| n
 // (mirror image, Ghias et al., JCP 225 (2007) 528), and the 2^DIM cell centres around x_IP with
 // (bi/tri)linear weights. Stencil nodes that are not flow cells (fluid / fluid-cut) are flagged.
-// Fallback (our choice, docs/numerics.md §5.2): if the flow nodes carry at least
+// Fallback (our choice, docs/methods.md §5.2): if the flow nodes carry at least
 // `min_flow_weight` of the plain weights, their weights are renormalised (the others get 0);
 // otherwise the image point is pushed out along n by one cell (max dx) and the stencil rebuilt,
 // at most `max_pushes` times; the record then has image_distance = 2|phi| + pushes*dx and the
-// ghost fill must use the general probe-length formula of docs/numerics.md §5.3 (L = |x_IP - x_G|).
+// ghost fill must use the general probe-length formula of docs/methods.md §5.3 (L = |x_IP - x_G|).
 #pragma once
 
 #include <sstream>

@@ -1,4 +1,4 @@
-// Narrow-band signed distance phi (positive in the fluid, docs/numerics.md §5.1) on a point lattice
+// Narrow-band signed distance phi (positive in the fluid, docs/methods.md §5.1) on a point lattice
 // (cell centres or cell nodes; paper section 6: phi_C and phi_N).
 //  * Band: every face scatters its exact point-face distance to the lattice points of its slab
 //    (lattice.h), keeping the minimum: exact for |phi| < band_width, O(faces + band points) work.

@@ -1,4 +1,4 @@
-// Thin bodies: two-sided ghost states (docs/numerics.md §5.7). A body thinner than about two cells puts
+// Thin bodies: two-sided ghost states (docs/methods.md §5.7). A body thinner than about two cells puts
 // both of its walls next to the same cells, and one ghost value cannot serve both sides. Two cases,
 // found along every grid line from every flow cell F to its neighbour X ("opposite" means unit normals
 // with n_F . n_X < opposite_cos, default -0.9, ~154 degrees):

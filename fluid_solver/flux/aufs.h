@@ -1,5 +1,5 @@
 // AUFS: artificially upstream flux-vector splitting (Sun & Takayama, JCP 189 (2003)),
-// docs/numerics.md §1.2, with the stiffened-gas dissipation vector D_SG of docs/numerics.md §1.3.
+// docs/methods.md §1.2, with the stiffened-gas dissipation vector D_SG of docs/methods.md §1.3.
 // For two states of the same phase (same EOS), face normal e_D.
 #pragma once
 
@@ -15,7 +15,7 @@ inline PhaseFlux<DIM> aufs_flux(const PhaseState<DIM>& L, const PhaseState<DIM>&
   const double unL = L.u[D], unR = R.u[D];
   const double cbar = 0.5 * (L.c + R.c);
   const double s1 = 0.5 * (unL + unR);
-  // Two-rarefaction estimates of the intermediate state (docs/numerics.md §1.2 step 3).
+  // Two-rarefaction estimates of the intermediate state (docs/methods.md §1.2 step 3).
   const double ustar = s1 + (L.c - R.c) / g1;
   const double cstar = cbar + 0.25 * g1 * (unL - unR);
   const bool left_up = s1 > 0.0;

@@ -1,5 +1,5 @@
 // AUFS over a whole row of faces, written without branches so that the loop vectorises
-// (same formulas as aufs.h, docs/numerics.md §1.2-1.3). Used for single-phase scenes, where the face
+// (same formulas as aufs.h, docs/methods.md §1.2-1.3). Used for single-phase scenes, where the face
 // loop is the hot spot. Inputs are structure-of-arrays views: for face f, left/right primitive
 // variable v is left[v][f] / right[v][f] with v = rho, u_0..u_{DIM-1}, p, c.
 #pragma once

@@ -1,5 +1,5 @@
 // HLLC approximate Riemann solver (Toro ch. 10) with Davis wave-speed bounds, valid for two
-// different stiffened-gas materials on the two sides (docs/numerics.md §2.3(b)). Also returns the
+// different stiffened-gas materials on the two sides (docs/methods.md §2.3(b)). Also returns the
 // contact speed u* and pressure p* that the DEM Lagrangian fluxes need.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Gas-particle exchange closures (docs/numerics.md §6). Drag enters as the momentum exchange
+// Gas-particle exchange closures (docs/methods.md §6). Drag enters as the momentum exchange
 // coefficient beta [kg m^-3 s^-1] with F_on_particles = beta (u_g - u_p), and
 //   beta = 3/4 C_D alpha_p rho_g |du| / d = 3/4 alpha_p mu_g (C_D Re) / d^2,
 // written with C_D Re so that the Stokes limit Re -> 0 stays finite.
@@ -17,11 +17,11 @@ inline double drag_cd_re(DragLaw law, double Re, double alpha_p) {
   switch (law) {
     case DragLaw::SchillerNaumann:  // Schiller & Naumann (1933)
       return Re < 1000.0 ? 24.0 * (1.0 + 0.15 * std::pow(Re, 0.687)) : 0.44 * Re;
-    case DragLaw::CliftGauvin:  // Clift & Gauvin (1970), docs/numerics.md §6.2
+    case DragLaw::CliftGauvin:  // Clift & Gauvin (1970), docs/methods.md §6.2
       return 24.0 * (1.0 + 0.15 * std::pow(Re, 0.687)) +
              (Re > 0 ? 0.42 * Re / (1.0 + 42500.0 * std::pow(Re, -1.16)) : 0.0);
     case DragLaw::AkhatovVainshtein: {
-      // Akhatov & Vainshtein (1984) as quoted in later work (constants unverified, docs/numerics.md §6.4): dilute
+      // Akhatov & Vainshtein (1984) as quoted in later work (constants unverified, docs/methods.md §6.4): dilute
       // 24/Re + 4.4/sqrt(Re) + 0.42 for alpha_p <= 0.08, Ergun-type 4/(3 alpha_g)(1.75 + 150 alpha_p /
       // (alpha_g Re)) for alpha_p >= 0.45, linear blend in alpha_p between.
       const double ag = std::max(1.0 - alpha_p, 1e-6);

@@ -1,5 +1,5 @@
 // Per-cell relaxation and exchange operators of the two-phase model, applied to the conservative
-// state of one cell (docs/numerics.md §2.5 and §6). All of them conserve mixture mass, momentum and energy.
+// state of one cell (docs/methods.md §2.5 and §6). All of them conserve mixture mass, momentum and energy.
 #pragma once
 
 #include <algorithm>
@@ -19,11 +19,11 @@ struct CellState2 {
   double E[2];
 };
 
-// Instantaneous pressure relaxation with implicit interface pressure p_I = p (docs/numerics.md §2.5(b)) on
+// Instantaneous pressure relaxation with implicit interface pressure p_I = p (docs/methods.md §2.5(b)) on
 // one cell, given phase masses m, kinetic energies per unit mass ke, total energies E and alpha0:
 // each phase follows e_k - e_k0 = -p (v_k - v_k0); for stiffened gases sum_k m_k v_k(p) = 1 is a
 // quadratic in p, solved in closed form and polished with one Newton step. Branch-free so that the
-// solver's row loops over it vectorise (the instantaneous velocity relaxation, docs/numerics.md §2.5(a),
+// solver's row loops over it vectorise (the instantaneous velocity relaxation, docs/methods.md §2.5(a),
 // lives in those loops too). A state whose equilibrium pressure is not admissible is left
 // unchanged (the admissibility check then reports it). Returns the pressure.
 [[gnu::always_inline]] inline double relax_pressure_kernel(double& alpha0, const double m0, const double m1,
@@ -61,7 +61,7 @@ struct CellState2 {
 
 // Drag over dt with the coefficient frozen at its start value: the slip decays exactly as
 // exp(-dt beta (1/m_g + 1/m_p)). Phase 0 is the gas, phase 1 the particles. The particles' kinetic
-// energy change is taken from the gas energy, so the dissipation heats the gas (docs/numerics.md §6.1).
+// energy change is taken from the gas energy, so the dissipation heats the gas (docs/methods.md §6.1).
 void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt);
 
 // Heat exchange (Ranz-Marshall) over dt at frozen densities and coefficient: T_g - T_p decays

@@ -10,7 +10,7 @@ namespace cosim::solid {
 
 enum class EosKind { IdealGas, LinearElastic, MieGruneisen };
 
-// Ideal gas (docs/numerics.md §7.1): p = (gamma-1) rho e, c^2 = gamma p / rho.
+// Ideal gas (docs/methods.md §7.1): p = (gamma-1) rho e, c^2 = gamma p / rho.
 struct IdealGasEos {
   double gamma;
   void eval(double rho, double e, double& p, double& c2) const {
@@ -28,7 +28,7 @@ struct LinearElasticEos {
   }
 };
 
-// Mie-Grueneisen with a linear Us-up Hugoniot (docs/numerics.md §7.3), eta = 1 - rho0/rho:
+// Mie-Grueneisen with a linear Us-up Hugoniot (docs/methods.md §7.3), eta = 1 - rho0/rho:
 //   p_H = rho0 c0^2 eta / (1 - s eta)^2 (compression), rho0 c0^2 eta (tension), e_H = p_H eta / (2 rho0),
 //   p = p_H + Gamma0 rho0 (e - e_H),
 //   c^2 = p_H' - Gamma0 rho0 e_H' + Gamma0 rho0 p / rho^2.

@@ -1,4 +1,4 @@
-// Tests of the exact Riemann solver against docs/numerics.md §8.1 (Toro ch. 4 tables) and against the
+// Tests of the exact Riemann solver against docs/methods.md §8.1 (Toro ch. 4 tables) and against the
 // jump conditions / isentropes it must satisfy.
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ struct ToroCase {
   int dp, du, drho;  // printed decimals of p*, u*, rho*
 };
 
-// docs/numerics.md §8.1, Toro's exact-solver test set (gamma = 1.4).
+// docs/methods.md §8.1, Toro's exact-solver test set (gamma = 1.4).
 // clang-format off
 const ToroCase kToro[] = {
     {"sod", {1, 0, 1}, {0.125, 0, 0.1}, 0.30313, 0.92745, 0.42632, 0.26557, 5, 5, 5},
@@ -50,7 +50,7 @@ const ToroCase kToro[] = {
 // clang-format on
 
 // Specific enthalpy of the stiffened gas, h = gamma (p + pinf) / ((gamma - 1) rho)
-// (docs/numerics.md §7.2).
+// (docs/methods.md §7.2).
 double enthalpy(double rho, double p, const Material& m) { return m.gamma * (p + m.pinf) / ((m.gamma - 1.0) * rho); }
 double sound_speed(double rho, double p, const Material& m) { return std::sqrt(m.gamma * (p + m.pinf) / rho); }
 
@@ -151,7 +151,7 @@ TEST(ExactRiemann, ToroJumpConditionsToRoundoff) {
 TEST(ExactRiemann, SodSamplesAtT02) {
   const RiemannSolution s({1, 0, 1}, kAir, {0.125, 0, 0.1}, kAir);
   const double t = 0.2, x0 = 0.5;
-  // docs/numerics.md §8.1 wave positions and shock speed.
+  // docs/methods.md §8.1 wave positions and shock speed.
   EXPECT_NEAR(x0 + t * s.left_head(), 0.26336, 6e-6);
   EXPECT_NEAR(x0 + t * s.left_tail(), 0.48595, 6e-6);
   EXPECT_NEAR(x0 + t * s.contact(), 0.68549, 6e-6);

@@ -21,7 +21,7 @@ TEST(Materials, TungstenByPressureAndTemperatureHasItsDensity) {
   EXPECT_NEAR(w.temperature(cold, 1e5), 300.0, 1e-6);
   // 3000 K: tungsten expands by about 4.6% in volume from room temperature (linear expansion about 1.5%,
   // Touloukian et al. 1975), to ~18,400 kg/m^3. The fit's thermal expansion alpha = (gamma-1) cv rho /
-  // ((gamma-1) B + p + pinf) (docs/numerics.md §7.5) has the fit's Grueneisen parameter gamma - 1 = 2.95 in place
+  // ((gamma-1) B + p + pinf) (docs/methods.md §7.5) has the fit's Grueneisen parameter gamma - 1 = 2.95 in place
   // of tungsten's 1.54: about 1.8x the true one, 6-7% in volume at 3000 K; within 4% of the true hot density.
   const double hot = w.density_from_pT(2e7, 3000);
   EXPECT_NEAR(hot, 18400, 0.04 * 18400);

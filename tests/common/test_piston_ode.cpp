@@ -1,4 +1,4 @@
-// Two-chamber piston reference ODE (docs/numerics.md §8.2): equilibrium, turning points and period of the
+// Two-chamber piston reference ODE (docs/methods.md §8.2): equilibrium, turning points and period of the
 // nondimensional setup (A = m = pR0 = 1, VL0 = 1, VR0 = 2, pL0 = 2) against the reference numbers there.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Paper 9.3, coupled: the piston scenes run through `cosim run` (coupler + fluid_solver + solid_solver, or the
-// Python rigid piston), against the two-chamber ODE (docs/numerics.md §8.2), its gas-inertia correction and the
+// Python rigid piston), against the two-chamber ODE (docs/methods.md §8.2), its gas-inertia correction and the
 // conforming all-Lagrangian run of configs/solid_piston_1d.yaml.
 #include <gtest/gtest.h>
 

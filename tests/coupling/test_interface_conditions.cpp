@@ -1,4 +1,4 @@
-// Interface conditions (coupler/interface_conditions.h; paper eqs. 17-22, docs/numerics.md §4.1).
+// Interface conditions (coupler/interface_conditions.h; paper eqs. 17-22, docs/methods.md §4.1).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,7 +73,7 @@ TEST(InterfaceConditions, WeightsFollowEqs21And22) {
 
 TEST(InterfaceConditions, CharacteristicIsTheAcousticRiemannSolution) {
   // Solid (left, state v_s, p_s, z_s) and fluid (right): u* = (z_s v_s + z_f v_f + p_s - p_f)/(z_s+z_f),
-  // p* = (z_f p_s + z_s p_f + z_s z_f (v_s - v_f))/(z_s+z_f) (docs/numerics.md §4.1).
+  // p* = (z_f p_s + z_s p_f + z_s z_f (v_s - v_f))/(z_s+z_f) (docs/methods.md §4.1).
   const double vs = 3.0, ps = 2e5, zs = 500.0, vf = -1.0, pf = 1e5, zf = 200.0;
   const auto st = interface_point(Mode::Characteristic, vs, -ps, zs, vf, pf, zf);
   EXPECT_NEAR(st.velocity, (zs * vs + zf * vf + ps - pf) / (zs + zf), 1e-9);

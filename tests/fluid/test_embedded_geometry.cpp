@@ -1,4 +1,4 @@
-// Geometry half of the embedded moving boundary (paper section 6, Table 1; docs/numerics.md §5): interface
+// Geometry half of the embedded moving boundary (paper section 6, Table 1; docs/methods.md §5): interface
 // segments, narrow-band signed distance, cell categories, image points, side images of thin bodies and the
 // locality of the work.
 #include <gtest/gtest.h>

@@ -34,7 +34,7 @@ fluid:
           phases: [{rho: 1000.0}, {rho: 1.0}]
 )";
 
-// A water/air interface advected at uniform p and u: p and u stay uniform (docs/numerics.md §2.4 and §2.6).
+// A water/air interface advected at uniform p and u: p and u stay uniform (docs/methods.md §2.4 and §2.6).
 TEST(TwoPhaseDEM, UniformPressureAndVelocityAcrossInterface) {
   for (const char* rec : {"first_order", "muscl"}) {
     auto sim = run_scene(kWaterAir, {std::string("fluid.numerics.reconstruction=") + rec});
@@ -87,7 +87,7 @@ fluid:
   }
 }
 
-// Water/air shock tube (docs/numerics.md §2.4): interface velocity 482.6 m/s (exact two-material solution).
+// Water/air shock tube (docs/methods.md §2.4): interface velocity 482.6 m/s (exact two-material solution).
 TEST(TwoPhaseDEM, WaterAirShockTubeInterfaceVelocity) {
   const std::string scene = R"(
 fluid:

@@ -58,7 +58,7 @@ TEST(SolidBoundaryFaces, ClosedSurfaceAndBoxArea) {
   }
 }
 
-// 4340 steel (rho0 = 7810, c0 = 4578, docs/numerics.md §7.3) at rest: bulk impedance rho0 c0 = 3.575e7 Pa s/m; with
+// 4340 steel (rho0 = 7810, c0 = 4578, docs/methods.md §7.3) at rest: bulk impedance rho0 c0 = 3.575e7 Pa s/m; with
 // G = 81.8 GPa the longitudinal speed c_p = sqrt(c0^2 + 4G/(3 rho0)) = 5909.6 m/s gives 4.6154e7.
 TEST(SolidBoundaryFaces, ImpedanceOfSteelAtRest) {
   const double rho0 = 7810.0, c0 = 4578.0, G = 81.8e9;

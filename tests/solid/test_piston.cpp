@@ -1,4 +1,4 @@
-// Gas piston on a conforming mesh (docs/numerics.md §8.2): rigid heavy piston between two ideal-gas chambers, all
+// Gas piston on a conforming mesh (docs/methods.md §8.2): rigid heavy piston between two ideal-gas chambers, all
 // Lagrangian, against the two-chamber adiabatic ODE (common/verification/piston_ode.h) over three periods.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Sedov-Taylor blast (docs/numerics.md §8.3) on Lagrangian meshes: shock radius within 3% of
+// Sedov-Taylor blast (docs/methods.md §8.3) on Lagrangian meshes: shock radius within 3% of
 // R = (E t^2 / (alpha rho0))^(1/(nu+2)) (measured at the density peak) and total energy (internal + kinetic) conserved
 // to round-off.
 #include <gtest/gtest.h>
