@@ -38,41 +38,35 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
   const nlohmann::json end_totals = totals_json(s, sim.totals());
   const std::vector<PhaseTotals> inflow = sim.boundary_inflow();
-  // created = end - start - boundary_inflow, per phase: what the scheme itself made (round-off without bodies).
-  nlohmann::json created = nlohmann::json::array();
-  for (std::size_t k = 0; k < inflow.size() && k < end_totals.size(); ++k) {
-    const auto &a = rec.start_totals[k], &b = end_totals[k];
-    nlohmann::json mom = nlohmann::json::array();
-    for (int d = 0; d < 3; ++d)
-      mom.push_back(b["momentum"][d].get<double>() - a["momentum"][d].get<double>() - inflow[k].momentum[d]);
-    created.push_back({{"phase", b["phase"]},
-                       {"mass", b["mass"].get<double>() - a["mass"].get<double>() - inflow[k].mass},
-                       {"momentum", mom},
-                       {"energy", b["energy"].get<double>() - a["energy"].get<double>() - inflow[k].energy}});
-  }
+  // Per phase: end - start of the flow cells' totals, less what entered through the domain boundary when asked.
+  const auto change = [&](bool less_inflow) {
+    nlohmann::json out = nlohmann::json::array();
+    for (std::size_t k = 0; k < end_totals.size(); ++k) {
+      const auto &a = rec.start_totals[k], &b = end_totals[k];
+      const PhaseTotals in = less_inflow && k < inflow.size() ? inflow[k] : PhaseTotals{};
+      nlohmann::json mom = nlohmann::json::array();
+      for (int d = 0; d < 3; ++d)
+        mom.push_back(b["momentum"][d].get<double>() - a["momentum"][d].get<double>() - in.momentum[d]);
+      out.push_back({{"phase", b["phase"]},
+                     {"mass", b["mass"].get<double>() - a["mass"].get<double>() - in.mass},
+                     {"momentum", mom},
+                     {"energy", b["energy"].get<double>() - a["energy"].get<double>() - in.energy}});
+    }
+    return out;
+  };
+  // created: what the scheme itself made (round-off without bodies).
   j["totals"] = {{"start", rec.start_totals},
                  {"end", end_totals},
                  {"boundary_inflow", totals_json(s, inflow)},
-                 {"created", created}};
+                 {"created", change(true)}};
   if (sim.embedded().active) {
     // The embedded boundary is not conservative: what the flow cells gained or lost. In a closed or
     // periodic domain this is exactly what crossed the moving boundary (cells covered or uncovered
     // by the body, and the ghost-cell wall treatment).
-    nlohmann::json change = nlohmann::json::array();
-    for (std::size_t k = 0; k < end_totals.size(); ++k) {
-      const auto &a = rec.start_totals[k], &b = end_totals[k];
-      change.push_back({{"phase", b["phase"]},
-                        {"mass", b["mass"].get<double>() - a["mass"].get<double>()},
-                        {"momentum",
-                         {b["momentum"][0].get<double>() - a["momentum"][0].get<double>(),
-                          b["momentum"][1].get<double>() - a["momentum"][1].get<double>(),
-                          b["momentum"][2].get<double>() - a["momentum"][2].get<double>()}},
-                        {"energy", b["energy"].get<double>() - a["energy"].get<double>()}});
-    }
     j["embedded"] = {{"bodies", s.embedded.bodies.size()},
                      {"boundary_order", s.embedded.second_order ? 2 : 1},
                      {"ghost_and_solid_cut_cells", sim.embedded().ghosts.size()},
-                     {"flow_totals_change", change}};
+                     {"flow_totals_change", change(false)}};
   }
   for (const auto& [k, v] : rec.extra.items()) j[k] = v;
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");

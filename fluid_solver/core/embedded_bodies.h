@@ -45,19 +45,21 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   EmbeddedState e;
   e.active = true;
   e.kind = geo.category;
+  // The wall velocity at a point of Surface face `face` with normal n: the surface's, its normal part replaced
+  // by the coupler's interface speed when there is one.
+  const auto wall_velocity = [&](int face, const embedded::Vec3& n, embedded::Vec3 v) {
+    if (wall_normal_speed && face >= 0) {
+      const double un = (*wall_normal_speed)[static_cast<std::size_t>(face)];
+      const double vn = embedded::dot(v, n);
+      for (int d = 0; d < 3; ++d) v[d] += (un - vn) * n[d];
+    }
+    return v;
+  };
   const auto record = [&](const embedded::ImagePoint& ip) {
     GhostRecord r;
     r.cell = ip.cell;
-    for (int d = 0; d < 3; ++d) {
-      r.normal[d] = ip.normal[d];
-      r.wall_velocity[d] = ip.wall_velocity[d];
-    }
-    if (wall_normal_speed && ip.face >= 0) {
-      const double un = (*wall_normal_speed)[static_cast<std::size_t>(ip.face)];
-      double vn = 0;
-      for (int d = 0; d < 3; ++d) vn += r.wall_velocity[d] * r.normal[d];
-      for (int d = 0; d < 3; ++d) r.wall_velocity[d] += (un - vn) * r.normal[d];
-    }
+    r.normal = ip.normal;
+    r.wall_velocity = wall_velocity(ip.face, ip.normal, ip.wall_velocity);
     if (wall_pressure && ip.face >= 0) {
       for (int k = 0; k < 2; ++k) r.wall_pressure[k] = (*wall_pressure)[2 * static_cast<std::size_t>(ip.face) + k];
       r.has_wall_pressure = std::isfinite(r.wall_pressure[0]);
@@ -78,13 +80,8 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   orient_wall_faces<DIM>(e, [&](std::size_t cell, std::array<double, 3>& n, std::array<double, 3>& v) {
     const embedded::BandPoint* bp = geo.centres.at(cell);
     if (!bp || bp->face < 0) return false;
-    embedded::ImagePoint ip;
-    ip.normal = bp->normal;
-    ip.face = bp->face;
-    ip.wall_velocity = embedded::face_velocity(s, bp->face, bp->bary);
-    const GhostRecord r = record(ip);
-    n = r.normal;
-    v = r.wall_velocity;
+    n = bp->normal;
+    v = wall_velocity(bp->face, bp->normal, embedded::face_velocity(s, bp->face, bp->bary));
     return true;
   });
   build_thin_body_faces<DIM>(g, e);

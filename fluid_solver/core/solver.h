@@ -323,7 +323,6 @@ class Solver final : public FluidSimulation {
       for (const auto& sc : scratch_) f += sc.boundary[i];
       step_inflow_[i] = b * (step_inflow_[i] + dt * f);
     }
-    (void)a;
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
@@ -495,9 +494,7 @@ class Solver final : public FluidSimulation {
         (it->across_high ? above : below) = values + static_cast<std::size_t>(it - sgs.begin()) * Lay::kPrim;
       const std::size_t e = c - first;
       for (int v = 0; v < Lay::kPrim; ++v) {
-        bool is_sound = false;
-        for (int k = 0; k < NP; ++k) is_sound = is_sound || v == Lay::sound(k);
-        if (is_sound) continue;
+        if (is_sound_var(v)) continue;
         const double* w = W_.var(v);
         const double wm = below ? below[v] : w[c - s], wp = above ? above[v] : w[c + s];
         const double half = 0.5 * slope<RM>(wm, w[c], wp);
@@ -507,8 +504,7 @@ class Solver final : public FluidSimulation {
       for (int k = 0; k < NP; ++k)
         for (int side = 0; side < 2; ++side) {
           double* b = edges + side * Lay::kPrim * len + e;
-          b[Lay::sound(k) * len] =
-              std::sqrt(eos_[k].gamma * (b[Lay::pres(k) * len] + eos_[k].pinf) / b[Lay::rho(k) * len]);
+          b[Lay::sound(k) * len] = eos_[k].sound_speed(b[Lay::rho(k) * len], b[Lay::pres(k) * len]);
         }
     }
   }
@@ -793,6 +789,13 @@ class Solver final : public FluidSimulation {
     else return limited_slope<Limiter::MC>(w0 - wm, wp - w0);
   }
 
+  // The primitive slots that hold a phase's sound speed: edges get it from their rho and p, not by reconstruction.
+  static constexpr bool is_sound_var(int v) {
+    for (int k = 0; k < NP; ++k)
+      if (v == Lay::sound(k)) return true;
+    return false;
+  }
+
   // Limited MUSCL edge states of `count` consecutive cells starting at `first` along direction D.
   // Edge buffer layout: for every primitive variable v, lo[v][e] at e + v * len and hi at
   // e + (kPrim + v) * len, len = edge_row_len(). Every cell's slopes are computed once per sweep.
@@ -800,9 +803,7 @@ class Solver final : public FluidSimulation {
   void compute_edges(std::size_t first, int count, double* edges) const {
     const std::size_t s = static_cast<std::size_t>(g_.stride[D]), len = edge_row_len();
     for (int v = 0; v < Lay::kPrim; ++v) {
-      bool is_sound = false;
-      for (int k = 0; k < NP; ++k) is_sound = is_sound || v == Lay::sound(k);
-      if (is_sound) continue;
+      if (is_sound_var(v)) continue;  // from rho and p below
       const double* w = W_.var(v) + first;
       double* lo = edges + v * len;
       double* hi = edges + (Lay::kPrim + v) * len;

@@ -73,6 +73,28 @@ void build_stencil(const Lattice<DIM>& C, const Usable& usable, ImagePoint& ip, 
   }
 }
 
+// The image point of ip (x_cell, normal, phi set) at 2 |phi| along the normal, pushed out by a cell (hmax) while the
+// usable nodes carry less than min_flow_weight of its stencil, at most max_pushes times; returns their weight.
+template <int DIM, class Usable>
+double place_image_point(const Lattice<DIM>& C, const Usable& usable, double hmax, const ImagePointOptions& opt,
+                         ImagePoint& ip) {
+  double flow_weight = 0;
+  for (ip.pushes = 0;; ++ip.pushes) {
+    ip.image_distance = 2 * std::abs(ip.phi) + ip.pushes * hmax;
+    ip.x_image = ip.x_cell + ip.image_distance * ip.normal;
+    build_stencil(C, usable, ip, flow_weight);
+    if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) return flow_weight;
+  }
+}
+
+// The weights to use: the plain ones of the usable nodes, renormalised by their share flow_weight (> 0).
+inline void renormalise_weights(ImagePoint& ip, double flow_weight) {
+  for (int k = 0; k < ip.stencil_size; ++k) {
+    const auto uk = static_cast<std::size_t>(k);
+    ip.weights[uk] = (ip.non_flow_mask >> k) & 1u ? 0.0 : ip.bilinear[uk] / flow_weight;
+  }
+}
+
 }  // namespace detail
 
 // Builds the records of all ghost and solid-cut cells of the band into `out`. Throws
@@ -99,14 +121,8 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     ip.normal = b.normal;
     ip.face = b.face;
     ip.wall_velocity = face_velocity(s, b.face, b.bary);
-    double flow_weight = 0;
-    for (ip.pushes = 0;; ++ip.pushes) {
-      ip.image_distance = 2 * std::abs(ip.phi) + ip.pushes * hmax;
-      ip.x_image = ip.x_cell + ip.image_distance * ip.normal;
-      detail::build_stencil(
-          C, [&](std::size_t c) { return is_flow_cell(category[c]); }, ip, flow_weight);
-      if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) break;
-    }
+    const double flow_weight = detail::place_image_point(
+        C, [&](std::size_t c) { return is_flow_cell(category[c]); }, hmax, opt, ip);
     bool outside = false;  // a ghost layer of the domain: its boundary condition applies there
     for (int d = 0; d < DIM; ++d)
       outside = outside || ip.ijk[static_cast<std::size_t>(d)] < 0 ||
@@ -123,10 +139,7 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
           << "): the body or the fluid gap there is thinner than the grid resolves; refine the grid";
       throw std::runtime_error(msg.str());
     }
-    for (int k = 0; k < ip.stencil_size; ++k) {
-      const auto uk = static_cast<std::size_t>(k);
-      ip.weights[uk] = (ip.non_flow_mask >> k) & 1u ? 0.0 : ip.bilinear[uk] / flow_weight;
-    }
+    detail::renormalise_weights(ip, flow_weight);
     out.push_back(ip);
   }
 }

@@ -78,18 +78,9 @@ std::vector<SideImage> find_side_images(const Grid<DIM>& g, const LevelSet<DIM>&
           const auto K = C.ijk(c);
           return is_flow_cell(category[c]) && dot(C.point(K[0], K[1], K[2]) - f.closest, f.normal) > -1e-9 * hmax;
         };
-        double flow_weight = 0;
-        for (ip.pushes = 0;; ++ip.pushes) {
-          ip.image_distance = 2 * dX + ip.pushes * hmax;
-          ip.x_image = ip.x_cell + ip.image_distance * ip.normal;
-          detail::build_stencil(C, in_front, ip, flow_weight);
-          if (flow_weight >= opt.min_flow_weight || ip.pushes >= opt.max_pushes) break;
-        }
+        const double flow_weight = detail::place_image_point(C, in_front, hmax, opt, ip);  // |phi| = d_X
         if (flow_weight > 0) {
-          for (int k = 0; k < ip.stencil_size; ++k) {
-            const auto uk = static_cast<std::size_t>(k);
-            ip.weights[uk] = (ip.non_flow_mask >> k) & 1u ? 0.0 : ip.bilinear[uk] / flow_weight;
-          }
+          detail::renormalise_weights(ip, flow_weight);
         } else {  // nothing in front but F itself (a plate tip in a one-cell gap): F's own state
           ip.stencil_size = 1;
           ip.stencil[0] = f.index;

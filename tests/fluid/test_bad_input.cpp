@@ -155,8 +155,9 @@ TEST(FluidSolverExecutable, BadInputExitsNonZeroWithMessage) {
     std::ifstream in(out / "summary.json");
     const std::string summary((std::istreambuf_iterator<char>(in)), {});
     EXPECT_NE(summary.find("\"threads\": 1,"), std::string::npos) << summary;
-    if (!std::getenv("OMP_WAIT_POLICY"))
+    if (!std::getenv("OMP_WAIT_POLICY")) {
       EXPECT_NE(summary.find("\"omp_wait_policy\": \"PASSIVE\""), std::string::npos) << summary;
+    }
   }
   EXPECT_TRUE(std::filesystem::exists(out / "fluid.xmf"));
   std::filesystem::remove_all(out);
