@@ -12,6 +12,7 @@
 
 #include "fluid_solver/flux/hllc.h"
 #include "fluid_solver/flux/same_phase_flux.h"
+#include "fluid_solver/flux/trace_flux.h"
 
 namespace cosim::fluid {
 
@@ -44,11 +45,12 @@ inline void cross_pair(const PhaseState<DIM>& Wp, const eos::StiffenedGas& ep, i
 }
 
 // Full DEM face. `same_*` are the states used for the same-phase contacts (low-Mach corrected when
-// enabled), `L`/`R` the plain reconstructed states used for the cross contacts.
+// enabled), `L`/`R` the plain reconstructed states used for the cross contacts. A phase whose volume
+// fraction is below `trace_alpha` on both sides gets the trace flux for its same-phase contact.
 template <FluxKind FK, int DIM, int NP, int D>
 inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[NP], const PhaseState<DIM> (&sameL)[NP],
                      const PhaseState<DIM> (&sameR)[NP], double aL, double aR, const eos::StiffenedGas* eos,
-                     FaceResult<DIM, NP>& r) {
+                     FaceResult<DIM, NP>& r, double trace_alpha = 0.0) {
   if constexpr (NP == 1) {
     r.flux[0] = same_phase_flux<FK, DIM, D>(sameL[0], sameR[0], eos[0]);
   } else {
@@ -60,7 +62,9 @@ inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[
     const double Skk[2] = {S00, S11};
     for (int k = 0; k < NP; ++k) {
       if (Skk[k] <= 0.0) continue;
-      const PhaseFlux<DIM> f = same_phase_flux<FK, DIM, D>(sameL[k], sameR[k], eos[k]);
+      const double amax = k == 0 ? std::max(aL, aR) : 1.0 - Skk[0];  // max(1 - aL, 1 - aR)
+      const PhaseFlux<DIM> f = amax < trace_alpha ? trace_flux<DIM, D>(L[k], R[k], eos[k])
+                                                  : same_phase_flux<FK, DIM, D>(sameL[k], sameR[k], eos[k]);
       r.flux[k].mass += Skk[k] * f.mass;
       for (int d = 0; d < DIM; ++d) r.flux[k].mom[d] += Skk[k] * f.mom[d];
       r.flux[k].energy += Skk[k] * f.energy;

@@ -255,6 +255,12 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     s.exchange.gas_viscosity = ex->get<double>("gas_viscosity", 1.8e-5, config::positive());
     s.exchange.gas_conductivity = ex->get<double>("gas_conductivity", 0.026, config::positive());
     s.exchange.alpha_min = ex->get<double>("alpha_min", 1e-8, config::in_range(0.0, 0.01));
+    // A trace phase keeps the carrier's pressure only with instantaneous pressure relaxation (docs/methods.md §2.7).
+    s.exchange.trace_alpha =
+        ex->get<double>("trace_alpha", s.exchange.pressure_relaxation ? 1e-3 : 0.0, config::in_range(0.0, 0.05));
+    if (s.exchange.trace_alpha > 0 && !s.exchange.pressure_relaxation)
+      ex->fail("trace_alpha", "a trace phase follows the carrier's pressure: it needs pressure_relaxation: true (or "
+                              "trace_alpha: 0)");
     if (s.num_phases() == 1) ex->fail("velocity_relaxation", "no exchange section for a single-phase scene");
     ex->finish();
   }

@@ -71,6 +71,7 @@ struct Exchange {
   double gas_viscosity = 1.8e-5;    // [Pa s]
   double gas_conductivity = 0.026;  // [W/(m K)]
   double alpha_min = 1e-8;          // volume-fraction floor
+  double trace_alpha = 1e-3;        // below it a phase is a trace: carrier's pressure, own waves not resolved
 };
 
 // A body embedded in the background mesh: a closed surface with a prescribed rigid velocity.

@@ -52,6 +52,7 @@ class Solver final : public FluidSimulation {
     else if (scene.limiter == Limiter::VanLeer) mode_ = ReconMode::VanLeer;
     else mode_ = ReconMode::MC;
     bc_ = BoundaryFiller<DIM, NP>(scene, g_, eos_);
+    if (NP == 2 && scene.exchange.pressure_relaxation) trace_alpha_ = scene.exchange.trace_alpha;
     set_initial_state<DIM, NP>(scene, g_, eos_, U_);
   }
 
@@ -104,7 +105,10 @@ class Solver final : public FluidSimulation {
             if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
             for (int k = 0; k < NP; ++k) {
               double s = 0;
-              const double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
+              // A trace phase is advected with the carrier's pressure: its sound speed does not limit the step.
+              double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
+              if constexpr (NP == 2)
+                if ((k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c]) < trace_alpha_) cs = 0.0;
               for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
               acc = std::max(acc, s);
             }
@@ -873,6 +877,7 @@ class Solver final : public FluidSimulation {
         for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(k, q) * flen;
         if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
         else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[k], cutoff);
+        if constexpr (NP == 2) trace_faces<D>(k, len, left_edges, left_off, right_edges, right_off, fv);
       }
       if constexpr (NP == 2) {
         // Weight by the same-phase contact fractions S_kk = min(alpha_k-, alpha_k+).
@@ -924,9 +929,9 @@ class Solver final : public FluidSimulation {
           const double amin = k == 0 ? std::min(aL, aR) : std::min(1.0 - aL, 1.0 - aR);
           if (amin > 1e-6) low_mach_correction<DIM>(sL[k].u, sL[k].c, sR[k].u, sR[k].c, cutoff);
         }
-        dem_face<FK, DIM, NP, D>(L, R, sL, sR, aL, aR, eos_, res);
+        dem_face<FK, DIM, NP, D>(L, R, sL, sR, aL, aR, eos_, res, trace_alpha_);
       } else {
-        dem_face<FK, DIM, NP, D>(L, R, L, R, aL, aR, eos_, res);
+        dem_face<FK, DIM, NP, D>(L, R, L, R, aL, aR, eos_, res, trace_alpha_);
       }
       for (int k = 0; k < NP; ++k) {
         buf[fvar_flux(k, 0) * flen + f] = res.flux[k].mass;
@@ -936,6 +941,26 @@ class Solver final : public FluidSimulation {
       if constexpr (NP == 2)
         store_lagrangian(buf, flen, f, res.to_left,
                          add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
+    }
+  }
+
+  // Faces of a row where phase k is a trace on both sides get the trace flux (flux/trace_flux.h) in place of
+  // the row kernel's, per unit contact (before the contact-fraction weights).
+  template <int D>
+  void trace_faces(int k, int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
+                   double* const* fv) const {
+    if (trace_alpha_ <= 0.0) return;
+    const std::size_t elen = edge_row_len();
+    const double* al = left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
+    const double* ar = right_edges + Lay::palpha * elen + right_off;
+    const double lo = k == 0 ? 0.0 : 1.0 - trace_alpha_, hi = k == 0 ? trace_alpha_ : 1.0;
+    for (int f = 0; f < len; ++f) {
+      if (!(al[f] < hi && ar[f] < hi && al[f] > lo && ar[f] > lo)) continue;  // phase k not a trace on both sides
+      const PhaseFlux<DIM> t = trace_flux<DIM, D>(edge_state(left_edges, 1, k, f + left_off),
+                                                  edge_state(right_edges, 0, k, f + right_off), eos_[k]);
+      fv[0][f] = t.mass;
+      for (int d = 0; d < DIM; ++d) fv[1 + d][f] = t.mom[d];
+      fv[1 + DIM][f] = t.energy;
     }
   }
 
@@ -985,6 +1010,7 @@ class Solver final : public FluidSimulation {
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
+  double trace_alpha_ = 0.0;  // exchange.trace_alpha (two phases with pressure relaxation), docs/methods.md §2.7
 };
 
 }  // namespace cosim::fluid
