@@ -46,11 +46,11 @@ inline void cross_pair(const PhaseState<DIM>& Wp, const eos::StiffenedGas& ep, i
 
 // Full DEM face. `same_*` are the states used for the same-phase contacts (low-Mach corrected when
 // enabled), `L`/`R` the plain reconstructed states used for the cross contacts. A phase whose volume
-// fraction is below `trace_alpha` on both sides gets the trace flux for its same-phase contact.
+// fraction is below `trace_alpha[k]` on both sides gets the trace flux for its same-phase contact.
 template <FluxKind FK, int DIM, int NP, int D>
 inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[NP], const PhaseState<DIM> (&sameL)[NP],
                      const PhaseState<DIM> (&sameR)[NP], double aL, double aR, const eos::StiffenedGas* eos,
-                     FaceResult<DIM, NP>& r, double trace_alpha = 0.0) {
+                     FaceResult<DIM, NP>& r, const double* trace_alpha = nullptr) {
   if constexpr (NP == 1) {
     r.flux[0] = same_phase_flux<FK, DIM, D>(sameL[0], sameR[0], eos[0]);
   } else {
@@ -63,7 +63,7 @@ inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[
     for (int k = 0; k < NP; ++k) {
       if (Skk[k] <= 0.0) continue;
       const double amax = k == 0 ? std::max(aL, aR) : 1.0 - Skk[0];  // max(1 - aL, 1 - aR)
-      const PhaseFlux<DIM> f = amax < trace_alpha ? trace_flux<DIM, D>(L[k], R[k], eos[k])
+      const PhaseFlux<DIM> f = trace_alpha && amax < trace_alpha[k] ? trace_flux<DIM, D>(L[k], R[k], eos[k])
                                                   : same_phase_flux<FK, DIM, D>(sameL[k], sameR[k], eos[k]);
       r.flux[k].mass += Skk[k] * f.mass;
       for (int d = 0; d < DIM; ++d) r.flux[k].mom[d] += Skk[k] * f.mom[d];

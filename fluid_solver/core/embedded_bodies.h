@@ -149,7 +149,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
       const coupling::FluidSamples smp =
           interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
-      wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure);
+      wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
     }
     inner_->set_embedded(
         to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),

@@ -35,7 +35,7 @@ bool ghost_state(const GhostRecord& g, const FieldArray& W, const eos::Stiffened
     double un = 0;
     for (int d = 0; d < DIM; ++d) un += (v[Lay::vel(k, d)] - g.wall_velocity[d]) * g.normal[d];
     for (int d = 0; d < DIM; ++d) v[Lay::vel(k, d)] -= factor * un * g.normal[d];
-    if (g.has_wall_pressure) {
+    if (g.has_wall_pressure && std::isfinite(g.wall_pressure[k])) {
       const double pinf = eos[k].pinf, pip = v[Lay::pres(k)] + pinf;
       const double pg = std::clamp(pip - factor * (pip - (g.wall_pressure[k] + pinf)), 0.5 * pip, 2.0 * pip);
       v[Lay::rho(k)] *= std::pow(pg / pip, 1.0 / eos[k].gamma);

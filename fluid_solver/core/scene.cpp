@@ -261,6 +261,18 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     if (s.exchange.trace_alpha > 0 && !s.exchange.pressure_relaxation)
       ex->fail("trace_alpha", "a trace phase follows the carrier's pressure: it needs pressure_relaxation: true (or "
                               "trace_alpha: 0)");
+    s.exchange.dispersed = ex->get<bool>("dispersed", false);
+    if (s.exchange.dispersed && !s.exchange.pressure_relaxation)
+      ex->fail("dispersed", "a dispersed phase takes the carrier's pressure: it needs pressure_relaxation: true");
+    if (auto ps = ex->optional_child("particle_stress")) {
+      if (!s.exchange.dispersed) ex->fail("particle_stress", "a particle stress for a dispersed phase (dispersed: true)");
+      ParticleStress& st = s.exchange.particle_stress;
+      st.p_s = ps->get<double>("p_s", st.p_s, config::positive());
+      st.beta = ps->get<double>("beta", st.beta, config::in_range(1.0, 10.0));
+      st.packing = ps->get<double>("packing", st.packing, config::in_range(0.3, 0.74));
+      st.delta = ps->get<double>("delta", st.delta, config::in_range(1e-4, 0.1));
+      ps->finish();
+    }
     if (s.num_phases() == 1) ex->fail("velocity_relaxation", "no exchange section for a single-phase scene");
     ex->finish();
   }

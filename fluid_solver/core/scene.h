@@ -9,6 +9,7 @@
 
 #include "common/config/config.h"
 #include "common/eos/stiffened_gas.h"
+#include "fluid_solver/physics/particle_stress.h"
 
 namespace cosim::fluid {
 
@@ -72,6 +73,10 @@ struct Exchange {
   double gas_conductivity = 0.026;  // [W/(m K)]
   double alpha_min = 1e-8;          // volume-fraction floor
   double trace_alpha = 1e-3;        // below it a phase is a trace: carrier's pressure, own waves not resolved
+  // Phase 1 is a dispersed particle phase: carrier's pressure and no own waves everywhere, collision stress
+  // between particles (docs/methods.md §2.8).
+  bool dispersed = false;
+  ParticleStress particle_stress;
 };
 
 // A body embedded in the background mesh: a closed surface with a prescribed rigid velocity.

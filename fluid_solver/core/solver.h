@@ -52,7 +52,8 @@ class Solver final : public FluidSimulation {
     else if (scene.limiter == Limiter::VanLeer) mode_ = ReconMode::VanLeer;
     else mode_ = ReconMode::MC;
     bc_ = BoundaryFiller<DIM, NP>(scene, g_, eos_);
-    if (NP == 2 && scene.exchange.pressure_relaxation) trace_alpha_ = scene.exchange.trace_alpha;
+    if (NP == 2 && scene.exchange.pressure_relaxation) trace_.fill(scene.exchange.trace_alpha);
+    if (NP == 2 && scene.exchange.dispersed) trace_[NP - 1] = 2.0;  // a trace everywhere (§2.8)
     set_initial_state<DIM, NP>(scene, g_, eos_, U_);
   }
 
@@ -107,8 +108,13 @@ class Solver final : public FluidSimulation {
               double s = 0;
               // A trace phase is advected with the carrier's pressure: its sound speed does not limit the step.
               double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
-              if constexpr (NP == 2)
-                if ((k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c]) < trace_alpha_) cs = 0.0;
+              if constexpr (NP == 2) {
+                const double ak = k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c];
+                if (ak < trace_[k]) cs = 0.0;
+                // A dispersed phase's waves are its compaction waves (docs/methods.md §2.8).
+                if (k == 1 && scene_.exchange.dispersed)
+                  cs = scene_.exchange.particle_stress.wave_speed(ak, Wp[Lay::rho(k)][c]);
+              }
               for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
               acc = std::max(acc, s);
             }
@@ -875,6 +881,10 @@ class Solver final : public FluidSimulation {
           rv[q] = right_edges + v * elen + right_off;
         }
         for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(k, q) * flen;
+        if (trace_[k] > 1.0) {  // a dispersed phase: the trace flux everywhere
+          trace_row<DIM, D>(len, lv, rv, fv, eos_[k]);
+          continue;
+        }
         if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
         else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[k], cutoff);
         if constexpr (NP == 2) trace_faces<D>(k, len, left_edges, left_off, right_edges, right_off, fv);
@@ -914,6 +924,7 @@ class Solver final : public FluidSimulation {
                            add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
         }
       }
+      add_particle_stress<D>(len, left_edges, left_off, right_edges, right_off, buf, flen);
       return;
     }
     for (int f = 0; f < len; ++f) {
@@ -929,9 +940,9 @@ class Solver final : public FluidSimulation {
           const double amin = k == 0 ? std::min(aL, aR) : std::min(1.0 - aL, 1.0 - aR);
           if (amin > 1e-6) low_mach_correction<DIM>(sL[k].u, sL[k].c, sR[k].u, sR[k].c, cutoff);
         }
-        dem_face<FK, DIM, NP, D>(L, R, sL, sR, aL, aR, eos_, res, trace_alpha_);
+        dem_face<FK, DIM, NP, D>(L, R, sL, sR, aL, aR, eos_, res, trace_.data());
       } else {
-        dem_face<FK, DIM, NP, D>(L, R, L, R, aL, aR, eos_, res, trace_alpha_);
+        dem_face<FK, DIM, NP, D>(L, R, L, R, aL, aR, eos_, res, trace_.data());
       }
       for (int k = 0; k < NP; ++k) {
         buf[fvar_flux(k, 0) * flen + f] = res.flux[k].mass;
@@ -942,6 +953,66 @@ class Solver final : public FluidSimulation {
         store_lagrangian(buf, flen, f, res.to_left,
                          add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
     }
+    add_particle_stress<D>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+  }
+
+  // A dispersed phase's collision stress Pi(alpha) at the faces of a row (docs/methods.md §2.8): the centred
+  // stress in its normal momentum and energy fluxes, with the local Lax-Friedrichs dissipation of its compaction
+  // waves, -c_f/2 (U+ - U-), c_f = max of the two sides' sqrt(Pi'/rho_p), on its conserved variables.
+  template <int D>
+  void add_particle_stress(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
+                           double* buf, std::size_t flen) const {
+    if constexpr (NP == 2) {
+      if (!scene_.exchange.dispersed) return;
+      if (scene_.exchange.particle_stress.beta == 3.0)
+        particle_stress_row<D, 3>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      else
+        particle_stress_row<D, 0>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+    } else {
+      (void)len, (void)left_edges, (void)left_off, (void)right_edges, (void)right_off, (void)buf, (void)flen;
+    }
+  }
+  template <int D, int B>
+  void particle_stress_row(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
+                           double* buf, std::size_t flen) const {
+    const ParticleStress& ps = scene_.exchange.particle_stress;
+    const eos::StiffenedGas& e = eos_[NP - 1];
+    const double ig1 = 1.0 / (e.gamma - 1.0), gpinf = e.gamma * e.pinf, q = e.q;
+    const std::size_t elen = edge_row_len();
+    const auto lv = [&](int v) { return left_edges + (Lay::kPrim + v) * elen + left_off; };  // hi edge, left cell
+    const auto rv = [&](int v) { return right_edges + v * elen + right_off; };               // lo edge, right cell
+    const double *al = lv(Lay::palpha), *ar = rv(Lay::palpha);
+    const double *rL = lv(Lay::rho(1)), *rR = rv(Lay::rho(1)), *pL = lv(Lay::pres(1)), *pR = rv(Lay::pres(1));
+    const double* uL[DIM];
+    const double* uR[DIM];
+    double* fmom[DIM];
+    for (int d = 0; d < DIM; ++d) {
+      uL[d] = lv(Lay::vel(1, d));
+      uR[d] = rv(Lay::vel(1, d));
+      fmom[d] = buf + fvar_flux(1, 1 + d) * flen;
+    }
+    double* fm = buf + fvar_flux(1, 0) * flen;
+    double* fe = buf + fvar_flux(1, 1 + DIM) * flen;
+#pragma GCC ivdep
+    for (int f = 0; f < len; ++f) {
+      const double aL = 1.0 - al[f], aR = 1.0 - ar[f];
+      double piL, dL, piR, dR;
+      ps.eval<B>(aL, piL, dL);
+      ps.eval<B>(aR, piR, dR);
+      const double cf = std::sqrt(std::max(dL / rL[f], dR / rR[f]));
+      const double mL = aL * rL[f], mR = aR * rR[f];
+      double kL = 0, kR = 0;
+      for (int d = 0; d < DIM; ++d) {
+        kL += uL[d][f] * uL[d][f];
+        kR += uR[d][f] * uR[d][f];
+        fmom[d][f] -= 0.5 * cf * (mR * uR[d][f] - mL * uL[d][f]);
+      }
+      fmom[D][f] += 0.5 * (piL + piR);
+      fm[f] -= 0.5 * cf * (mR - mL);
+      const double EL = aL * ((pL[f] + gpinf) * ig1 + rL[f] * q + 0.5 * rL[f] * kL);
+      const double ER = aR * ((pR[f] + gpinf) * ig1 + rR[f] * q + 0.5 * rR[f] * kR);
+      fe[f] += 0.5 * (piL * uL[D][f] + piR * uR[D][f]) - 0.5 * cf * (ER - EL);
+    }
   }
 
   // Faces of a row where phase k is a trace on both sides get the trace flux (flux/trace_flux.h) in place of
@@ -949,13 +1020,13 @@ class Solver final : public FluidSimulation {
   template <int D>
   void trace_faces(int k, int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                    double* const* fv) const {
-    if (trace_alpha_ <= 0.0) return;
+    if (trace_[k] <= 0.0) return;
     const std::size_t elen = edge_row_len();
     const double* al = left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
     const double* ar = right_edges + Lay::palpha * elen + right_off;
-    const double lo = k == 0 ? 0.0 : 1.0 - trace_alpha_, hi = k == 0 ? trace_alpha_ : 1.0;
     for (int f = 0; f < len; ++f) {
-      if (!(al[f] < hi && ar[f] < hi && al[f] > lo && ar[f] > lo)) continue;  // phase k not a trace on both sides
+      const double akL = k == 0 ? al[f] : 1.0 - al[f], akR = k == 0 ? ar[f] : 1.0 - ar[f];
+      if (!(akL < trace_[k] && akR < trace_[k])) continue;  // phase k not a trace on both sides
       const PhaseFlux<DIM> t = trace_flux<DIM, D>(edge_state(left_edges, 1, k, f + left_off),
                                                   edge_state(right_edges, 0, k, f + right_off), eos_[k]);
       fv[0][f] = t.mass;
@@ -1010,7 +1081,8 @@ class Solver final : public FluidSimulation {
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
-  double trace_alpha_ = 0.0;  // exchange.trace_alpha (two phases with pressure relaxation), docs/methods.md §2.7
+  // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.
+  std::array<double, NP> trace_{};
 };
 
 }  // namespace cosim::fluid

@@ -36,6 +36,8 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
                                         const SampleOptions& opt = {}) {
   constexpr int NS = 1 << DIM;
   const int np = sim.scene().num_phases();
+  const bool dispersed = sim.scene().exchange.dispersed;
+  const ParticleStress& stress = sim.scene().exchange.particle_stress;
   coupling::FluidSamples out;
   out.count = faces.count;
   out.phases = np;
@@ -133,6 +135,10 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
         out.normal_velocity[i] = v.un;
         out.pressure[i] = p;
         out.impedance[i] = v.rho * v.c;
+        if (k == 1 && dispersed) {  // its collision stress loads the wall too; its waves are compaction waves (§2.8)
+          out.pressure[i] += stress.stress(v.a) / std::max(v.a, 1e-300);
+          out.impedance[i] = v.rho * stress.wave_speed(v.a, v.rho);
+        }
       }
       out.wetted[f] = 1;
       break;
@@ -143,12 +149,15 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
 
 // The wall pressure of each face for the ghost cells (to_embedded_state): two slots per face (phases 0 and 1),
 // `pressure` per face and phase where the samples found fluid next to the face, NaN where not (no fluid, no wall
-// pressure: its ghosts copy the image point's).
-inline std::vector<double> wall_pressure_slots(const coupling::FluidSamples& s, const std::vector<double>& pressure) {
+// pressure: its ghosts copy the image point's). A dispersed phase (`dispersed`, phase 1) gets none: its ghosts keep
+// the image point's pressure, which is the carrier's, and its load on the wall is its collision stress (§2.8).
+inline std::vector<double> wall_pressure_slots(const coupling::FluidSamples& s, const std::vector<double>& pressure,
+                                               bool dispersed = false) {
   std::vector<double> out(2 * static_cast<std::size_t>(s.count), std::nan(""));
+  const int phases = dispersed ? 1 : s.phases;
   for (int f = 0; f < s.count; ++f)
     if (s.wetted[static_cast<std::size_t>(f)])
-      for (int k = 0; k < s.phases; ++k)
+      for (int k = 0; k < phases; ++k)
         out[2 * static_cast<std::size_t>(f) + k] = pressure[static_cast<std::size_t>(f) * s.phases + k];
   return out;
 }
