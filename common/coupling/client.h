@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ struct ClientOptions {
   std::vector<std::string> phase_names;  // fluid: its phases in sample order
   double connect_timeout = 30.0;         // [s] to wait for the Welcome
   std::uint32_t protocol_version = 0;    // 0: this build's; tests only set another
+  // Checked while waiting for the coupler (every 0.1 s): true stops the wait with RunStopped (the solvers pass
+  // their SIGINT/SIGTERM flag, so a signal ends a solver at once even while the coupler is silent).
+  std::function<bool()> should_stop;
 };
 
 class Client {

@@ -33,6 +33,7 @@ inline std::unique_ptr<Client> connect_solver(const app::RunOptions& opt, Role r
   co.role = role;
   co.program = program;
   co.phase_names = std::move(phase_names);
+  co.should_stop = [] { return app::interrupted(); };  // SIGINT/SIGTERM end a wait on a silent coupler at once
   try {
     co.scene_hash = scene_hash(opt.scene_file, opt.overrides);
     return std::make_unique<Client>(co);
