@@ -1,5 +1,6 @@
-// The real solvers under a coupler that has gone silent (SIGSTOP): SIGTERM ends each of them at once, with exit
-// code 130 and its summary.json written with status "interrupted", instead of at its heartbeat timeout.
+// The real solvers and their coupler under signals: SIGTERM ends a solver waiting on a silent (SIGSTOPped) coupler
+// at once, exit 130 and summary.json status "interrupted"; a killed coupler is seen at once (its connection closes),
+// not after the heartbeat timeout.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -24,36 +25,52 @@ double seconds_until_exit(Child& c, double limit) {
   return elapsed();
 }
 
+// Coupler, fluid_solver and solid_solver on the 2D piston, run long with a long heartbeat timeout (only what the
+// test does can end them soon), started and running coupled (the interface history grows).
+struct RealRun {
+  fs::path dir;
+  std::vector<Child> cs;  // coupler, fluid, solid
+  explicit RealRun(const std::string& name) {
+    dir = test_dir(name);
+    const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
+    const std::string ep = "ipc://" + (dir / "c.sock").string();
+    const std::vector<std::string> sets{"--set", "coupling.time.end=1e3", "--set", "coupling.timeout=30"};
+    auto with_sets = [&](std::vector<std::string> a) {
+      a.insert(a.end(), sets.begin(), sets.end());
+      return a;
+    };
+    cs = {child("coupler", with_sets(coupler_args(ep, scene, dir / "coupler")), dir),
+          child("fluid", with_sets({bin("fluid_solver").string(), scene.string(), "--out", (dir / "fluid").string(),
+                                    "--coupler", ep, "--token", "tok", "--quiet"}),
+                dir),
+          child("solid", with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(),
+                                    "--coupler", ep, "--token", "tok", "--quiet"}),
+                dir)};
+    for (auto& c : cs) launcher::start(c);
+  }
+  ::testing::AssertionResult running_coupled() {
+    const fs::path hist = dir / "coupler" / "interface_history.csv";
+    const auto t0 = std::chrono::steady_clock::now();
+    while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
+      for (auto& c : cs) {
+        launcher::poll(c);
+        if (!c.running) return ::testing::AssertionFailure() << c.name << " ended:\n" << read_file(c.log);
+      }
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 30)
+        return ::testing::AssertionFailure() << "no coupled cycles within 30 s";
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return ::testing::AssertionSuccess();
+  }
+  nlohmann::json summary(int i) const { return nlohmann::json::parse(read_file(dir / cs[i].name / "summary.json")); }
+};
+
 }  // namespace
 
 TEST(SolverSignals, SigtermEndsASolverWaitingOnASilentCouplerAtOnceWithItsSummary) {
-  const fs::path dir = test_dir("sigterm");
-  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
-  const std::string ep = "ipc://" + (dir / "c.sock").string();
-  // A long run with a long heartbeat timeout: only the signal can end the solvers' wait within the test.
-  const std::vector<std::string> sets{"--set", "coupling.time.end=1e3", "--set", "coupling.timeout=30"};
-  auto with_sets = [&](std::vector<std::string> a) {
-    a.insert(a.end(), sets.begin(), sets.end());
-    return a;
-  };
-  std::vector<Child> cs{
-      child("coupler", with_sets(coupler_args(ep, scene, dir / "coupler")), dir),
-      child("fluid", with_sets({bin("fluid_solver").string(), scene.string(), "--out", (dir / "fluid").string(),
-                                "--coupler", ep, "--token", "tok", "--quiet"}),
-            dir),
-      child("solid", with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(),
-                                "--coupler", ep, "--token", "tok", "--quiet"}),
-            dir)};
-  for (auto& c : cs) launcher::start(c);
-  // Running coupled: the interface history grows.
-  const auto t0 = std::chrono::steady_clock::now();
-  while (!fs::exists(dir / "coupler" / "interface_history.csv") ||
-         fs::file_size(dir / "coupler" / "interface_history.csv") < 2000) {
-    for (auto& c : cs) launcher::poll(c);
-    ASSERT_TRUE(cs[0].running && cs[1].running && cs[2].running) << read_file(cs[0].log) << read_file(cs[1].log);
-    ASSERT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  RealRun r("sigterm");
+  ASSERT_TRUE(r.running_coupled());
+  auto& cs = r.cs;
   ::kill(cs[0].pid, SIGSTOP);  // the coupler goes silent, its socket stays open
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   for (int i : {1, 2}) {
@@ -62,14 +79,35 @@ TEST(SolverSignals, SigtermEndsASolverWaitingOnASilentCouplerAtOnceWithItsSummar
     EXPECT_FALSE(cs[i].running) << cs[i].name;
     EXPECT_LT(waited, 1.0) << cs[i].name;
     EXPECT_EQ(cs[i].exit_code, 130) << cs[i].name << ":\n" << read_file(cs[i].log);
-    const fs::path summary = dir / cs[i].name / "summary.json";
-    ASSERT_TRUE(fs::exists(summary)) << cs[i].name;
-    const nlohmann::json j = nlohmann::json::parse(read_file(summary));
+    ASSERT_TRUE(fs::exists(r.dir / cs[i].name / "summary.json")) << cs[i].name;
+    const nlohmann::json j = r.summary(i);
     EXPECT_EQ(j["status"], "interrupted") << cs[i].name;
     std::printf("%s: exited %.2f s after SIGTERM, code %d, summary status %s\n", cs[i].name.c_str(), waited,
                 cs[i].exit_code, j["status"].get<std::string>().c_str());
   }
   ::kill(cs[0].pid, SIGKILL);
   wait_all(cs, 5);
-  EXPECT_FALSE(process_with_argument(dir.string()));
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
+}
+
+// A coupler killed outright: the solvers see its connection close and stop at once (exit 5, summary failed with
+// the cause), not after their heartbeat timeout (30 s here).
+TEST(SolverSignals, ASolverSeesItsCouplerDieAtOnce) {
+  RealRun r("coupler_killed");
+  ASSERT_TRUE(r.running_coupled());
+  auto& cs = r.cs;
+  ::kill(cs[0].pid, SIGKILL);
+  const auto t0 = std::chrono::steady_clock::now();
+  wait_all(cs, 10);
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("both solvers ended %.2f s after the coupler was killed\n", waited);
+  EXPECT_LT(waited, 1.5);
+  for (int i : {1, 2}) {
+    EXPECT_EQ(cs[i].exit_code, 5) << cs[i].name << ":\n" << read_file(cs[i].log);
+    ASSERT_TRUE(fs::exists(r.dir / cs[i].name / "summary.json")) << cs[i].name;
+    const nlohmann::json j = r.summary(i);
+    EXPECT_EQ(j["status"], "failed") << cs[i].name;
+    EXPECT_NE(j.dump().find("closed the connection"), std::string::npos) << j.dump();
+  }
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
 }
