@@ -25,7 +25,7 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   auto out = n.optional_child("output");
   c.output_times = read_output_times(out ? &*out : nullptr, c.t_end);
   if (out) out->finish();
-  c.timeout = n.get<double>("timeout", 5.0, positive());
+  c.timeout = n.get<double>("timeout", 3.0, positive());
   c.heartbeat_interval = n.get<double>("heartbeat_interval", c.timeout / 10.0, in_open_closed(0.0, c.timeout / 2.0));
   c.connect_timeout = n.get<double>("connect_timeout", 30.0, positive());
   c.pressure_predictor = n.get<std::string>("predictor", "linear", one_of({"linear", "none"})) == "linear";

@@ -24,7 +24,7 @@ struct CouplerConfig {
   long max_cycles = 1000000000L;
   double dt_max = 0.0;               // 0: no limit
   std::vector<double> output_times;  // sorted, ends with t_end
-  double timeout = 5.0;
+  double timeout = 3.0;
   double heartbeat_interval = 0.5;
   double connect_timeout = 30.0;
   bool pressure_predictor = true;  // predictor: linear

@@ -190,13 +190,11 @@ int run(const LaunchOptions& opt) {
   ::setenv("COSIM_SCENE_FILE", opt.scene.c_str(), 1);
   ::setenv("COSIM_SCENE_COPY", scene.string().c_str(), 1);
 
-  const auto stop_all = [&] {
-    for (auto& c : children) stop(c, 3.0);
-  };
+  const auto stop_children = [&] { stop_all(children, 3.0); };
   try {
     for (auto& c : children) start(c);
   } catch (const std::exception& e) {
-    stop_all();
+    stop_children();
     std::cerr << "cosim: " << e.what() << "\n";
     return 2;
   }
@@ -213,7 +211,7 @@ int run(const LaunchOptions& opt) {
     if (g_stop) {
       if (tty && !opt.quiet) std::cerr << "\n";
       std::cerr << "cosim: interrupted: stopping all processes\n";
-      stop_all();
+      stop_children();
       return 130;
     }
     for (auto& c : children) {
@@ -222,7 +220,7 @@ int run(const LaunchOptions& opt) {
       if (first_exit == 0) first_exit = now_s();
       if (c.exit_code != 0) {
         if (tty && !opt.quiet) std::cerr << "\n";
-        stop_all();
+        stop_children();
         std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", c.describe(), c.exit_code,
                                  c.log.string(), tail(c.log, 15));
         return c.exit_code;
@@ -233,7 +231,7 @@ int run(const LaunchOptions& opt) {
         if (c.running) {
           std::cerr << fmt::format("cosim: {} still running {:.0f} s after the others ended; stopping it\n",
                                    c.describe(), grace);
-          stop_all();
+          stop_children();
           std::cerr << tail(c.log, 15);
           return 1;
         }

@@ -62,18 +62,36 @@ bool poll(Child& c) {
 }
 
 void stop(Child& c, double grace) {
-  if (!c.running) return;
-  ::kill(-c.pid, SIGTERM);
+  std::vector<Child> one{c};
+  stop_all(one, grace);
+  c = one[0];
+}
+
+void stop_all(std::vector<Child>& cs, double grace) {
+  for (auto& c : cs)
+    if (c.running) {
+      ::kill(-c.pid, SIGTERM);
+      ::kill(-c.pid, SIGCONT);
+    }
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace);
-  while (std::chrono::steady_clock::now() < end) {
-    if (poll(c)) return;
+  const auto all_done = [&] {
+    bool done = true;
+    for (auto& c : cs) {
+      poll(c);
+      done = done && !c.running;
+    }
+    return done;
+  };
+  while (!all_done() && std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  for (auto& c : cs) {
+    if (!c.running) continue;
+    ::kill(-c.pid, SIGKILL);
+    int status = 0;
+    ::waitpid(c.pid, &status, 0);
+    c.running = false;
+    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
-  ::kill(-c.pid, SIGKILL);
-  int status = 0;
-  ::waitpid(c.pid, &status, 0);
-  c.running = false;
-  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 std::string tail(const std::filesystem::path& file, int n) {

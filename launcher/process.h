@@ -26,8 +26,11 @@ struct Child {
 void start(Child& c);
 // Non-blocking: updates running/exit_code; true when the child has just exited.
 bool poll(Child& c);
-// SIGTERM, up to grace seconds for it to exit, then SIGKILL; waits for it.
+// SIGTERM (and SIGCONT, so that a stopped process handles it and writes its summary), up to grace seconds for it
+// to exit, then SIGKILL; waits for it.
 void stop(Child& c, double grace);
+// The same for all running children at once, with one deadline.
+void stop_all(std::vector<Child>& cs, double grace);
 
 // The last n lines of a file ("" when unreadable).
 std::string tail(const std::filesystem::path& file, int n);

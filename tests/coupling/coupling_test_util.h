@@ -97,17 +97,22 @@ inline double wait_all(std::vector<launcher::Child>& cs, double seconds) {
   }
 }
 
-// True when some process's command line contains `text` (no process may be left running).
-inline bool process_with_argument(const std::string& text) {
+// The pid of a process (not this one) whose command line contains all of `texts`, 0 when none.
+inline int pid_with_arguments(const std::vector<std::string>& texts) {
   for (const auto& e : fs::directory_iterator("/proc")) {
     const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (name.find_first_not_of("0123456789") != std::string::npos || std::to_string(::getpid()) == name) continue;
     std::string cmd = read_file(e.path() / "cmdline");
     for (char& c : cmd)
       if (c == '\0') c = ' ';
-    if (cmd.find(text) != std::string::npos && std::to_string(::getpid()) != name) return true;
+    bool all = !cmd.empty();
+    for (const auto& t : texts) all = all && cmd.find(t) != std::string::npos;
+    if (all) return std::stoi(name);
   }
-  return false;
+  return 0;
 }
+
+// True when some process's command line contains `text` (no process may be left running).
+inline bool process_with_argument(const std::string& text) { return pid_with_arguments({text}) != 0; }
 
 }  // namespace cosim::test

@@ -111,3 +111,36 @@ TEST(SolverSignals, ASolverSeesItsCouplerDieAtOnce) {
   }
   EXPECT_FALSE(process_with_argument(r.dir.string()));
 }
+
+// `cosim run` with a solver stopped (SIGSTOP): the coupler declares it dead after its timeout (3 s), the launcher
+// stops everything together (SIGTERM and SIGCONT, so the stopped solver too ends by its handler and writes its
+// summary): the run ends within 5 s of the stop, with the cause on the launcher's output.
+TEST(SolverSignals, AStoppedSolverEndsTheRunWithinFiveSeconds) {
+  const fs::path dir = test_dir("stopped_solver");
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
+  Child run = child("cosim", {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
+                              "coupling.time.end=1e3", "--quiet"},
+                    dir);
+  launcher::start(run);
+  const fs::path hist = dir / "run" / "coupler" / "interface_history.csv";
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
+    launcher::poll(run);
+    ASSERT_TRUE(run.running) << read_file(run.log);
+    ASSERT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const int fluid = pid_with_arguments({bin("fluid_solver").string(), (dir / "run").string()});
+  ASSERT_GT(fluid, 0);
+  ::kill(fluid, SIGSTOP);
+  const double waited = seconds_until_exit(run, 15.0);
+  std::printf("the run ended %.2f s after its fluid solver was stopped, exit code %d\n", waited, run.exit_code);
+  EXPECT_LT(waited, 5.0);
+  EXPECT_EQ(run.exit_code, 5) << read_file(run.log);
+  EXPECT_NE(read_file(run.log).find("declared dead"), std::string::npos) << read_file(run.log);
+  const fs::path summary = dir / "run" / "fluid" / "summary.json";
+  ASSERT_TRUE(fs::exists(summary));
+  EXPECT_EQ(nlohmann::json::parse(read_file(summary))["status"], "interrupted");
+  if (run.running) launcher::stop(run, 1.0);
+  EXPECT_FALSE(process_with_argument((dir / "run").string()));
+}
