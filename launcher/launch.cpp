@@ -22,6 +22,7 @@
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
+#include "launcher/run_summary.h"
 
 namespace fs = std::filesystem;
 
@@ -191,11 +192,16 @@ int run(const LaunchOptions& opt) {
   ::setenv("COSIM_SCENE_COPY", scene.string().c_str(), 1);
 
   const auto stop_children = [&] { stop_all(children, 3.0); };
+  const double launch_time = now_s();
+  const auto summarise = [&](const std::string& status, const std::string& reason, const Child* failed) {
+    write_run_summary(out, {status, reason, failed, now_s() - launch_time}, children, coupled);
+  };
   try {
     for (auto& c : children) start(c);
   } catch (const std::exception& e) {
     stop_children();
     std::cerr << "cosim: " << e.what() << "\n";
+    summarise("failed", e.what(), nullptr);
     return 2;
   }
   if (!opt.quiet)
@@ -212,6 +218,7 @@ int run(const LaunchOptions& opt) {
       if (tty && !opt.quiet) std::cerr << "\n";
       std::cerr << "cosim: interrupted: stopping all processes\n";
       stop_children();
+      summarise("interrupted", "cosim run was interrupted (SIGINT/SIGTERM): all processes stopped", nullptr);
       return 130;
     }
     for (auto& c : children) {
@@ -220,9 +227,12 @@ int run(const LaunchOptions& opt) {
       if (first_exit == 0) first_exit = now_s();
       if (c.exit_code != 0) {
         if (tty && !opt.quiet) std::cerr << "\n";
+        const Child failed = c;  // as it ended, before the others are stopped
         stop_children();
         std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", c.describe(), c.exit_code,
                                  c.log.string(), tail(c.log, 15));
+        summarise("failed", fmt::format("{} failed ({}); the others were stopped", c.name, exit_description(c)),
+                  &failed);
         return c.exit_code;
       }
     }
@@ -231,8 +241,10 @@ int run(const LaunchOptions& opt) {
         if (c.running) {
           std::cerr << fmt::format("cosim: {} still running {:.0f} s after the others ended; stopping it\n",
                                    c.describe(), grace);
+          const Child hung = c;
           stop_children();
           std::cerr << tail(c.log, 15);
+          summarise("failed", fmt::format("{} still running {:.0f} s after the others ended", c.name, grace), &hung);
           return 1;
         }
     }
@@ -253,6 +265,7 @@ int run(const LaunchOptions& opt) {
     const std::string why = write_energy_account(out);
     if (!why.empty()) std::cerr << "cosim: no energy_account.json: " << why << "\n";
   }
+  summarise("completed", "all processes completed", nullptr);
   if (!opt.quiet)
     std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n", now_s() - start_time,
                              out.string());

@@ -58,6 +58,7 @@ bool poll(Child& c) {
   if (r != c.pid) return false;
   c.running = false;
   c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  c.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   return true;
 }
 
@@ -91,6 +92,7 @@ void stop_all(std::vector<Child>& cs, double grace) {
     ::waitpid(c.pid, &status, 0);
     c.running = false;
     c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    c.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   }
 }
 

@@ -18,6 +18,7 @@ struct Child {
   pid_t pid = -1;
   bool running = false;
   int exit_code = 0;             // 128 + signal when killed by a signal
+  int signal = 0;                // the signal that killed it, 0 when it exited
   std::string describe() const;  // "fluid (build/bin/fluid_solver, pid 123)"
 };
 

@@ -55,6 +55,7 @@ TEST(TungstenBlast, CompletesAndConservesEachPhaseApartFromTheBoundaryFluxes) {
   ASSERT_EQ(cosim_run(scene_file("tungsten_blast_3d"), dir, kCiSize), 0) << run_logs(dir);
   const nlohmann::json f = read_json(dir / "fluid" / "summary.json");
   EXPECT_EQ(f["status"], "completed");
+  EXPECT_EQ(read_json(dir / "run_summary.json")["status"], "completed");  // the launcher's account of the run
   for (const char* sub : {"fluid/summary.json", "solid/summary.json", "coupler/coupler_summary.json"}) {
     const nlohmann::json j = read_json(dir / sub);  // every summary names the build
     EXPECT_TRUE(j.contains("version") && j.contains("git_commit")) << sub;

@@ -141,6 +141,17 @@ TEST(SolverSignals, AStoppedSolverEndsTheRunWithinFiveSeconds) {
   const fs::path summary = dir / "run" / "fluid" / "summary.json";
   ASSERT_TRUE(fs::exists(summary));
   EXPECT_EQ(nlohmann::json::parse(read_file(summary))["status"], "interrupted");
+  // The cause is in the run directory: the coupler failed first, naming the stopped solver.
+  const fs::path rs = dir / "run" / "run_summary.json";
+  ASSERT_TRUE(fs::exists(rs));
+  const nlohmann::json j = nlohmann::json::parse(read_file(rs));
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_EQ(j["failed_process"]["name"], "coupler");
+  EXPECT_EQ(j["failed_process"]["exit"], "exit code 5");
+  EXPECT_NE(j["failed_process"]["last_log_lines"].dump().find("declared dead"), std::string::npos) << j.dump(2);
+  EXPECT_GT(j["cycle"].get<long>(), 0);
+  EXPECT_GT(j["time"].get<double>(), 0.0);
+  EXPECT_EQ(j["processes"].size(), 3u);
   if (run.running) launcher::stop(run, 1.0);
   EXPECT_FALSE(process_with_argument((dir / "run").string()));
 }
