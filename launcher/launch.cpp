@@ -1,9 +1,11 @@
 #include "launcher/launch.h"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
@@ -123,6 +125,20 @@ int run(const LaunchOptions& opt) {
     std::cerr << fmt::format("cosim: {}: cannot create the run directory: {}\n", out.string(), ec.message());
     return 2;
   }
+  // One run per directory: a lock held for the whole run (released by the kernel when cosim ends, however).
+  const fs::path lock_path = out / ".cosim.lock";
+  const int lock_fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
+    std::string holder;
+    std::ifstream(lock_path) >> holder;
+    std::cerr << fmt::format("cosim: {}: the run directory is in use by another run{}; choose another --out or wait "
+                             "for it to end\n",
+                             out.string(), holder.empty() ? "" : " (cosim pid " + holder + ")");
+    return 2;
+  }
+  const std::string pid_text = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(lock_fd, 0) != 0 || ::write(lock_fd, pid_text.data(), pid_text.size()) < 0)
+    std::cerr << "cosim: note: cannot record the pid in " << lock_path.string() << "\n";
   const fs::path scene = fs::absolute(out / "scene.yaml");
   if (fs::absolute(opt.scene) != scene) fs::copy_file(opt.scene, scene, fs::copy_options::overwrite_existing, ec);
   if (ec) {

@@ -1,6 +1,7 @@
 // The real solvers and their coupler under signals: SIGTERM ends a solver waiting on a silent (SIGSTOPped) coupler
 // at once, exit 130 and summary.json status "interrupted"; a killed coupler is seen at once (its connection closes),
-// not after the heartbeat timeout.
+// not after the heartbeat timeout; a stopped solver ends `cosim run` within 5 s with the cause in run_summary.json;
+// one run per run directory.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -154,4 +155,43 @@ TEST(SolverSignals, AStoppedSolverEndsTheRunWithinFiveSeconds) {
   EXPECT_EQ(j["processes"].size(), 3u);
   if (run.running) launcher::stop(run, 1.0);
   EXPECT_FALSE(process_with_argument((dir / "run").string()));
+}
+
+// A second `cosim run` into the directory of a running one is refused at once (it would mix their snapshots and
+// logs); the first runs on; once it has ended the directory can be used again.
+TEST(RunDirectory, ASecondRunIntoARunningRunsDirectoryIsRefused) {
+  const fs::path dir = test_dir("run_lock");
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
+  const auto cosim_run = [&](const std::string& name, const std::string& end) {
+    return child(name, {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
+                        "coupling.time.end=" + end, "--quiet"},
+                 dir);
+  };
+  Child first = cosim_run("first", "1e3");
+  launcher::start(first);
+  const fs::path hist = dir / "run" / "coupler" / "interface_history.csv";
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
+    launcher::poll(first);
+    ASSERT_TRUE(first.running) << read_file(first.log);
+    ASSERT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  Child second = cosim_run("second", "1e-3");
+  launcher::start(second);
+  const double waited = seconds_until_exit(second, 10.0);
+  EXPECT_LT(waited, 2.0);
+  EXPECT_EQ(second.exit_code, 2);
+  const std::string msg = read_file(second.log);
+  EXPECT_NE(msg.find("the run directory is in use by another run (cosim pid " + std::to_string(first.pid) + ")"),
+            std::string::npos)
+      << msg;
+  launcher::poll(first);
+  EXPECT_TRUE(first.running);  // undisturbed
+  launcher::stop(first, 5.0);
+  EXPECT_EQ(first.exit_code, 130);
+  Child third = cosim_run("third", "1e-3");  // the lock went with the first run
+  launcher::start(third);
+  seconds_until_exit(third, 60.0);
+  EXPECT_EQ(third.exit_code, 0) << read_file(third.log);
 }
