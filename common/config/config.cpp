@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace cosim::config {
@@ -303,13 +304,46 @@ Node load_file(const std::string& file, const std::vector<std::string>& override
   return load_string(ss.str(), name, overrides);
 }
 
+namespace {
+// A key given twice in one map is an error (yaml-cpp keeps the first, PyYAML the last: the scene would mean
+// different things to our solvers and to Python tools); both lines are named.
+void refuse_duplicate_keys(const YAML::Node& n, const std::string& name) {
+  if (n.IsSequence())
+    for (const auto& e : n) refuse_duplicate_keys(e, name);
+  if (!n.IsMap()) return;
+  std::map<std::string, int> first_line;
+  for (const auto& kv : n) {
+    if (kv.first.IsScalar()) {
+      const std::string key = kv.first.Scalar();
+      const int line = kv.first.Mark().line + 1;
+      const auto [it, fresh] = first_line.emplace(key, line);
+      if (!fresh)
+        throw ConfigError(fmt::format("{}:{}: key '{}' is given twice (first at line {}); give each key once", name,
+                                      line, key, it->second));
+    }
+    refuse_duplicate_keys(kv.second, name);
+  }
+}
+
+// The line of a YAML syntax error, to say when a tab is the cause (YAML indents with spaces only).
+std::string tab_hint(const std::string& text, int line) {
+  std::istringstream in(text);
+  std::string l;
+  for (int i = 0; i <= line && std::getline(in, l); ++i) {
+  }
+  return l.find('\t') != std::string::npos ? " (the line contains a tab: YAML indents with spaces only)" : "";
+}
+}  // namespace
+
 Node load_string(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.mark.column + 1, e.msg));
+    throw ConfigError(fmt::format("{}:{}:{}: YAML syntax error: {}{}", name, e.mark.line + 1, e.mark.column + 1, e.msg,
+                                  tab_hint(text, e.mark.line)));
   }
+  refuse_duplicate_keys(root, name);
   return make_root(root, name, overrides);
 }
 
