@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,17 @@ Check<double> in_range(double lo, double hi) {
   return [lo, hi](const double& v) {
     return (v >= lo && v <= hi) ? std::string() : fmt::format("a number in [{}, {}]", fmt_num(lo), fmt_num(hi));
   };
+}
+Check<double> speed() {
+  return [](const double& v) { return std::abs(v) <= 1e5 ? std::string() : std::string("speeds of at most 1e5 m/s"); };
+}
+std::array<double, 3> read_point(Node& n, const std::string& key, int dim, std::optional<std::vector<double>> fallback,
+                                 Check<double> check) {
+  const std::vector<double> v = n.get_vector(key, static_cast<std::size_t>(dim), static_cast<std::size_t>(dim),
+                                             std::move(fallback), std::move(check));
+  std::array<double, 3> out{0, 0, 0};
+  for (int d = 0; d < dim; ++d) out[static_cast<std::size_t>(d)] = v[static_cast<std::size_t>(d)];
+  return out;
 }
 Check<double> in_open_closed(double lo, double hi) {
   return [lo, hi](const double& v) {

@@ -40,6 +40,7 @@ Check<double> positive();
 Check<double> non_negative();
 Check<double> in_range(double lo, double hi);        // lo <= v <= hi
 Check<double> in_open_closed(double lo, double hi);  // lo <  v <= hi
+Check<double> speed();                               // |v| <= 1e5 m/s: a velocity that makes physical sense
 Check<int> int_at_least(int lo);
 Check<std::string> one_of(std::vector<std::string> choices);
 
@@ -98,6 +99,10 @@ class Node {
   std::shared_ptr<DocumentContext> ctx_;
   mutable std::set<std::string> used_;
 };
+
+// A point or vector of `dim` numbers under `key` (the other components 0); `fallback` when the key is absent.
+std::array<double, 3> read_point(Node& n, const std::string& key, int dim,
+                                 std::optional<std::vector<double>> fallback = std::nullopt, Check<double> check = {});
 
 // Parse a YAML file, apply "a.b.c=value" overrides, return the root node.
 Node load_file(const std::string& file, const std::vector<std::string>& overrides = {});

@@ -1,6 +1,7 @@
 // Template part of config.h (type conversion with clear messages).
 #pragma once
 
+#include <cmath>
 #include <type_traits>
 
 namespace cosim::config {
@@ -42,7 +43,7 @@ bool convert(const YAML::Node& n, T& out) {
     try {
       std::size_t pos = 0;
       double v = std::stod(s, &pos);
-      if (pos != s.size()) return false;
+      if (pos != s.size() || !std::isfinite(v)) return false;  // nan and inf are not numbers a scene can mean
       out = static_cast<T>(v);
       return true;
     } catch (...) { return false; }

@@ -10,13 +10,6 @@ namespace cosim::fluid::scene_readers {
 
 using config::Node;
 
-std::array<double, 3> read_point(Node& n, const std::string& key, int dim, std::optional<std::vector<double>> fb) {
-  auto v = n.get_vector(key, dim, dim, fb);
-  std::array<double, 3> out{0, 0, 0};
-  for (int d = 0; d < dim; ++d) out[d] = v[d];
-  return out;
-}
-
 namespace {
 
 eos::StiffenedGas read_eos(Node& n, const std::string& phase_name, std::string& material) {
@@ -88,7 +81,7 @@ MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
   if (n.has("T")) T = n.get<double>("T", 0, config::positive());
   n.skip("rho");
   n.skip("T");
-  auto vel = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0));
+  auto vel = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0), config::speed());
   std::vector<double> alphas;
   if (np == 1) {
     alphas = {1.0};
@@ -122,7 +115,7 @@ MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
         Tk = q.get<double>("T", 0, config::positive());
         if (!q.has("rho")) rk.reset();
       }
-      velk = read_point(q, "velocity", dim, std::vector<double>(vel.begin(), vel.begin() + dim));
+      velk = read_point(q, "velocity", dim, std::vector<double>(vel.begin(), vel.begin() + dim), config::speed());
       q.finish();
     }
     if (std::isnan(pk)) n.fail("p", fmt::format("a pressure [Pa] for phase '{}'", phases[k].name));

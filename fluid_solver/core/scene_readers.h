@@ -12,9 +12,7 @@
 
 namespace cosim::fluid::scene_readers {
 
-// A point of `dim` coordinates (the others 0); fb: the default when the key is absent.
-std::array<double, 3> read_point(config::Node& n, const std::string& key, int dim,
-                                 std::optional<std::vector<double>> fb = {});
+using config::read_point;
 
 // One entry of fluid.phases: name, material (library or custom) and equation of state.
 Phase read_phase(config::Node& n);

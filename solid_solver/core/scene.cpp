@@ -25,13 +25,7 @@ void known_keys(Node& n, std::initializer_list<const char*> keys) {
   n.finish();
 }
 
-std::array<double, 3> read_point(Node& n, const std::string& key, int dim,
-                                 std::optional<std::vector<double>> fb = std::nullopt) {
-  auto v = n.get_vector(key, dim, dim, fb);
-  std::array<double, 3> out{0, 0, 0};
-  for (int d = 0; d < dim; ++d) out[d] = v[d];
-  return out;
-}
+using config::read_point;
 
 MaterialModel read_material(Node& b, bool rigid, bool& has_eos) {
   MaterialModel m;
@@ -113,7 +107,7 @@ BlockSpec read_block(Node& b, int dim) {
       if (s.material.eos == EosKind::IdealGas && s.pressure < 0)
         in->fail("pressure", "a pressure >= 0 for an ideal gas");
     }
-    s.velocity = read_point(*in, "velocity", dim, std::vector<double>(dim, 0.0));
+    s.velocity = read_point(*in, "velocity", dim, std::vector<double>(dim, 0.0), config::speed());
     // Spin about the block's centre of mass: a scalar (about z) in 2D, [wx, wy, wz] in 3D.
     in->skip("angular_velocity");
     if (in->has("angular_velocity")) {
@@ -172,7 +166,7 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
       if (!n.has(keys[d])) continue;
       if (d >= dim) n.fail(keys[d], fmt::format("a velocity component of a {}D mesh", dim));
       b.component[d] = true;
-      b.velocity[d] = n.get<double>(keys[d], 0.0);
+      b.velocity[d] = n.get<double>(keys[d], 0.0, config::speed());
     }
     if (!b.component[0] && !b.component[1] && !b.component[2])
       n.fail("vx", "at least one prescribed velocity component vx, vy or vz [m/s]");

@@ -190,5 +190,18 @@ fluid:
   std::filesystem::remove_all(out);
 }
 
+// Numbers that make no physical sense are refused at load time, naming the key: a speed of 1e300 m/s (it used to
+// pass and fail later as p = -nan), and nan or inf anywhere a number is read.
+TEST(SceneValidation, AbsurdAndNonFiniteNumbersAreRefusedAtLoad) {
+  const std::string fast = error_of(replace(kGood, "velocity: [0.0]", "velocity: [-1.0e300]"));
+  EXPECT_NE(fast.find("fluid.initial.state.velocity"), std::string::npos) << fast;
+  EXPECT_NE(fast.find("speeds of at most 1e5 m/s"), std::string::npos) << fast;
+  for (const char* bad : {"nan", ".nan", "inf", "-.inf"}) {
+    const std::string e = error_of(replace(kGood, "rho: 1.0", std::string("rho: ") + bad));
+    EXPECT_NE(e.find("fluid.initial.state.rho"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_EQ(error_of(replace(kGood, "velocity: [0.0]", "velocity: [3.0e4]")), "");  // fast, but physical
+}
+
 }  // namespace
 }  // namespace cosim::fluid::test
