@@ -39,6 +39,16 @@ T field(std::istringstream& is, const Lines& L, std::size_t line, const char* wh
   return v;
 }
 
+// A count of entries that follow, one or more lines each: never negative, never more than the lines left (a
+// corrupt count must not become a huge allocation).
+long count_field(std::istringstream& is, const Lines& L, std::size_t line, const char* what) {
+  const long n = field<long>(is, L, line, what);
+  const long left = static_cast<long>(L.text.size() - L.next);
+  if (n < 0) L.fail(line, fmt::format("{} is {}: expected a count >= 0", what, n));
+  if (n > left) L.fail(line, fmt::format("{} is {}, but only {} lines follow in the file", what, n, left));
+  return n;
+}
+
 void expect_end(Lines& L, const std::string& section) {
   std::size_t at;
   auto is = L.take(at, ("$End" + section).c_str());
@@ -205,15 +215,15 @@ Mesh read_gmsh(const std::string& path) {
     } else if (h == "$Nodes") {
       std::size_t ln;
       auto is = L.take(ln, "numEntityBlocks numNodes minNodeTag maxNodeTag");
-      const long nblocks = field<long>(is, L, ln, "numEntityBlocks");
-      const long nnodes = field<long>(is, L, ln, "numNodes");
+      const long nblocks = count_field(is, L, ln, "numEntityBlocks");
+      const long nnodes = count_field(is, L, ln, "numNodes");
       coords.reserve(static_cast<std::size_t>(std::max(0L, nnodes)) * 3);
       for (long b = 0; b < nblocks; ++b) {
         auto bs = L.take(ln, "a node block header 'entityDim entityTag parametric numNodesInBlock'");
         field<int>(bs, L, ln, "entityDim");
         field<int>(bs, L, ln, "entityTag");
         const int parametric = field<int>(bs, L, ln, "parametric (0 or 1)");
-        const long n = field<long>(bs, L, ln, "numNodesInBlock");
+        const long n = count_field(bs, L, ln, "numNodesInBlock");
         std::vector<long> tags(n);
         for (long k = 0; k < n; ++k) {
           auto ts = L.take(ln, "a node tag");
@@ -237,13 +247,13 @@ Mesh read_gmsh(const std::string& path) {
     } else if (h == "$Elements") {
       std::size_t ln;
       auto is = L.take(ln, "numEntityBlocks numElements minElementTag maxElementTag");
-      const long nblocks = field<long>(is, L, ln, "numEntityBlocks");
+      const long nblocks = count_field(is, L, ln, "numEntityBlocks");
       for (long b = 0; b < nblocks; ++b) {
         auto bs = L.take(ln, "an element block header 'entityDim entityTag elementType numElementsInBlock'");
         const int edim = field<int>(bs, L, ln, "entityDim");
         const int etag = field<int>(bs, L, ln, "entityTag");
         const int type = field<int>(bs, L, ln, "elementType");
-        const long n = field<long>(bs, L, ln, "numElementsInBlock");
+        const long n = count_field(bs, L, ln, "numElementsInBlock");
         const int nn = type_nodes(type);
         for (long k = 0; k < n; ++k) {
           auto es = L.take(ln, "an element 'tag node...'");

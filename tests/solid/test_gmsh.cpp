@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 
 #include "solid_solver/mesh/element_faces.h"
 #include "solid_solver/mesh/gmsh_reader.h"
@@ -181,6 +182,18 @@ TEST(SolidGmsh, BadFilesNameElementGroupAndLine) {
   EXPECT_NE(ver.find(":2: MSH format version 2.2 is not supported"), std::string::npos) << ver;
   const std::string trunc = error_of(write_tmp("trunc.msh", good.substr(0, good.find("$EndNodes"))));
   EXPECT_NE(trunc.find("expected"), std::string::npos) << trunc;
+  // Corrupt counts: never a huge allocation or a crash, a message with the line (was std::bad_alloc, exit 134).
+  const std::size_t nodes_at = good.find("$Nodes\n") + 7;
+  const std::string header = good.substr(nodes_at, good.find('\n', nodes_at) - nodes_at);  // "blocks nodes min max"
+  std::istringstream hs(header);
+  long blocks = 0, nodes = 0;
+  hs >> blocks >> nodes;
+  for (const char* count : {"999999999999", "-5"}) {
+    const std::string bad = replace(good, header, fmt::format("{} {} 1 {}", blocks, count, nodes));
+    const std::string e = error_of(write_tmp("count.msh", bad));
+    EXPECT_NE(e.find("solid_gmsh_count.msh:"), std::string::npos) << e;
+    EXPECT_NE(e.find(std::string("numNodes is ") + count), std::string::npos) << e;
+  }
   // 3D: a left-handed hexahedron (top and bottom swapped).
   const std::string hex = error_of(
       write_tmp("hex.msh", hex_strip(2, [](auto& h) { std::rotate(h[1].begin(), h[1].begin() + 4, h[1].end()); })));
