@@ -29,7 +29,7 @@ struct DriveOptions {
   std::vector<double> output_times;  // sorted, last = t_end
   double t_end = 0;
   long max_steps = 0;
-  double dt_min = 0;         // a smaller step is a numerical failure
+  double dt_min = 0;         // a smaller stable step is a numerical failure; 0: 1e-6 of the first stable step
   double work_per_step = 1;  // cells or elements, for the rate on the progress line
   std::string rate_unit;     // e.g. "Mcell-updates/s"
   bool quiet = false;
@@ -42,6 +42,17 @@ struct DriveResult {
   double wall = 0;
 };
 
+// "; <what limits the step>" when the simulation can say (a member limiting_step() returning text), else "".
+template <class Sim>
+std::string limiting_hint(const Sim& sim) {
+  if constexpr (requires { sim.limiting_step(); }) {
+    const std::string w = sim.limiting_step();
+    return w.empty() ? "" : "; " + w;
+  } else {
+    return "";
+  }
+}
+
 // Sim provides stable_dt(), advance(dt), time(), steps(); snapshot() writes one output.
 template <class Sim, class Snapshot>
 DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
@@ -49,12 +60,22 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
   util::Progress progress(!o.quiet);
   double t_last = 0.0, rate = 0.0;
   long steps_last = sim.steps();
+  double floor = -1;
   try {
     snapshot();
     for (double t_out : o.output_times) {
       while (sim.time() < t_out * (1.0 - 1e-14) && sim.steps() < o.max_steps) {
         if (interrupted()) throw std::runtime_error("interrupted");
         double dt = sim.stable_dt();
+        // A stable step that collapses (a tangled element, a runaway state) would spin forever: below the floor
+        // the run stops as a numerical failure, its last snapshot kept.
+        if (floor < 0 && (o.dt_min > 0 || std::isfinite(dt))) floor = o.dt_min > 0 ? o.dt_min : 1e-6 * dt;
+        if (floor > 0 && dt < floor)
+          throw NumericalError(fmt::format("the stable time step collapsed to {:g} s at t = {:.9g} s (step {}), below "
+                                           "the floor {:g} s ({}){}",
+                                           dt, sim.time(), sim.steps(), floor,
+                                           o.dt_min > 0 ? "numerics.dt_min" : "1e-6 of the first step",
+                                           limiting_hint(sim)));
         const double remaining = t_out - sim.time();
         if (dt >= remaining) dt = remaining;
         else if (dt > 0.5 * remaining) dt = 0.5 * remaining;  // avoid a tiny last step
