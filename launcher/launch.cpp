@@ -131,9 +131,10 @@ int run(const LaunchOptions& opt) {
   if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
     std::string holder;
     std::ifstream(lock_path) >> holder;
-    std::cerr << fmt::format("cosim: {}: the run directory is in use by another run{}; choose another --out or wait "
-                             "for it to end\n",
-                             out.string(), holder.empty() ? "" : " (cosim pid " + holder + ")");
+    std::cerr << fmt::format(
+        "cosim: {}: the run directory is in use by another run{}; choose another --out or wait "
+        "for it to end\n",
+        out.string(), holder.empty() ? "" : " (cosim pid " + holder + ")");
     return 2;
   }
   const std::string pid_text = std::to_string(::getpid()) + "\n";

@@ -71,11 +71,11 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
         // the run stops as a numerical failure, its last snapshot kept.
         if (floor < 0 && (o.dt_min > 0 || std::isfinite(dt))) floor = o.dt_min > 0 ? o.dt_min : 1e-6 * dt;
         if (floor > 0 && dt < floor)
-          throw NumericalError(fmt::format("the stable time step collapsed to {:g} s at t = {:.9g} s (step {}), below "
-                                           "the floor {:g} s ({}){}",
-                                           dt, sim.time(), sim.steps(), floor,
-                                           o.dt_min > 0 ? "numerics.dt_min" : "1e-6 of the first step",
-                                           limiting_hint(sim)));
+          throw NumericalError(
+              fmt::format("the stable time step collapsed to {:g} s at t = {:.9g} s (step {}), below "
+                          "the floor {:g} s ({}){}",
+                          dt, sim.time(), sim.steps(), floor,
+                          o.dt_min > 0 ? "numerics.dt_min" : "1e-6 of the first step", limiting_hint(sim)));
         const double remaining = t_out - sim.time();
         if (dt >= remaining) dt = remaining;
         else if (dt > 0.5 * remaining) dt = 0.5 * remaining;  // avoid a tiny last step

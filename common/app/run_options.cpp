@@ -17,7 +17,8 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   app.add_option("--out", opt.out_dir, "output directory (created if missing)")->required();
   app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");
   app.add_flag("--quiet,-q", opt.quiet, "no progress line");
-  app.add_option("--threads", opt.threads, "OpenMP threads (default: the scene's value, else chosen by the size of the work)");
+  app.add_option("--threads", opt.threads,
+                 "OpenMP threads (default: the scene's value, else chosen by the size of the work)");
   app.add_option("--coupler", opt.coupler,
                  "coupled run: the coupler's endpoint (ipc://PATH or tcp://HOST:PORT); the coupler sets time steps "
                  "and output times");

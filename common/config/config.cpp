@@ -341,8 +341,7 @@ void refuse_duplicate_keys(const YAML::Node& n, const std::string& name) {
 std::string tab_hint(const std::string& text, int line) {
   std::istringstream in(text);
   std::string l;
-  for (int i = 0; i <= line && std::getline(in, l); ++i) {
-  }
+  for (int i = 0; i <= line && std::getline(in, l); ++i) {}
   return l.find('\t') != std::string::npos ? " (the line contains a tab: YAML indents with spaces only)" : "";
 }
 }  // namespace

@@ -58,8 +58,8 @@ struct Client::Impl {
     Frames frames;
     while (!data.receive(frames, 100)) {
       if (opt.should_stop && opt.should_stop())
-        throw RunStopped(fmt::format("{}: interrupted while waiting for {} from the coupler", role_name(opt.role),
-                                     expected));
+        throw RunStopped(
+            fmt::format("{}: interrupted while waiting for {} from the coupler", role_name(opt.role), expected));
       if (heartbeat && heartbeat->lost()) throw PeerLost(heartbeat->lost_message());
       if (max_wait > 0 && now_s() - start > max_wait)
         throw PeerLost(fmt::format("{}: no {} from the coupler at {} within {:g} s", role_name(opt.role), expected,

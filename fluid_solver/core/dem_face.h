@@ -63,8 +63,9 @@ inline void dem_face(const PhaseState<DIM> (&L)[NP], const PhaseState<DIM> (&R)[
     for (int k = 0; k < NP; ++k) {
       if (Skk[k] <= 0.0) continue;
       const double amax = k == 0 ? std::max(aL, aR) : 1.0 - Skk[0];  // max(1 - aL, 1 - aR)
-      const PhaseFlux<DIM> f = trace_alpha && amax < trace_alpha[k] ? trace_flux<DIM, D>(L[k], R[k], eos[k])
-                                                  : same_phase_flux<FK, DIM, D>(sameL[k], sameR[k], eos[k]);
+      const PhaseFlux<DIM> f = trace_alpha && amax < trace_alpha[k]
+                                   ? trace_flux<DIM, D>(L[k], R[k], eos[k])
+                                   : same_phase_flux<FK, DIM, D>(sameL[k], sameR[k], eos[k]);
       r.flux[k].mass += Skk[k] * f.mass;
       for (int d = 0; d < DIM; ++d) r.flux[k].mom[d] += Skk[k] * f.mom[d];
       r.flux[k].energy += Skk[k] * f.energy;

@@ -259,13 +259,15 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     s.exchange.trace_alpha =
         ex->get<double>("trace_alpha", s.exchange.pressure_relaxation ? 1e-3 : 0.0, config::in_range(0.0, 0.05));
     if (s.exchange.trace_alpha > 0 && !s.exchange.pressure_relaxation)
-      ex->fail("trace_alpha", "a trace phase follows the carrier's pressure: it needs pressure_relaxation: true (or "
-                              "trace_alpha: 0)");
+      ex->fail("trace_alpha",
+               "a trace phase follows the carrier's pressure: it needs pressure_relaxation: true (or "
+               "trace_alpha: 0)");
     s.exchange.dispersed = ex->get<bool>("dispersed", false);
     if (s.exchange.dispersed && !s.exchange.pressure_relaxation)
       ex->fail("dispersed", "a dispersed phase takes the carrier's pressure: it needs pressure_relaxation: true");
     if (auto ps = ex->optional_child("particle_stress")) {
-      if (!s.exchange.dispersed) ex->fail("particle_stress", "a particle stress for a dispersed phase (dispersed: true)");
+      if (!s.exchange.dispersed)
+        ex->fail("particle_stress", "a particle stress for a dispersed phase (dispersed: true)");
       ParticleStress& st = s.exchange.particle_stress;
       st.p_s = ps->get<double>("p_s", st.p_s, config::positive());
       st.beta = ps->get<double>("beta", st.beta, config::in_range(1.0, 10.0));

@@ -966,8 +966,7 @@ class Solver final : public FluidSimulation {
       if (!scene_.exchange.dispersed) return;
       if (scene_.exchange.particle_stress.beta == 3.0)
         particle_stress_row<D, 3>(len, left_edges, left_off, right_edges, right_off, buf, flen);
-      else
-        particle_stress_row<D, 0>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      else particle_stress_row<D, 0>(len, left_edges, left_off, right_edges, right_off, buf, flen);
     } else {
       (void)len, (void)left_edges, (void)left_off, (void)right_edges, (void)right_off, (void)buf, (void)flen;
     }

@@ -64,7 +64,8 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       }
       face_speed_[f] = a > 0 ? u / a : 0.0;
     }
-    const std::vector<double> face_pressure = wall_pressure_slots(samples_, st.pressure, sim_.scene().exchange.dispersed);
+    const std::vector<double> face_pressure =
+        wall_pressure_slots(samples_, st.pressure, sim_.scene().exchange.dispersed);
     surface_speed_.resize(surface_.source_face.size());
     surface_pressure_.resize(2 * surface_.source_face.size());
     for (std::size_t sf = 0; sf < surface_.source_face.size(); ++sf) {

@@ -12,10 +12,10 @@
 namespace cosim::fluid {
 
 struct ParticleStress {
-  double p_s = 1.0e7;     // [Pa]
-  double beta = 3.0;      // exponent
-  double packing = 0.6;   // close-packing volume fraction alpha_cp
-  double delta = 0.01;    // the law is continued linearly within delta of packing
+  double p_s = 1.0e7;    // [Pa]
+  double beta = 3.0;     // exponent
+  double packing = 0.6;  // close-packing volume fraction alpha_cp
+  double delta = 0.01;   // the law is continued linearly within delta of packing
 
   // Pi and dPi/dalpha at volume fraction a; B > 0: the exponent is the integer B (pow costs a fifth of a step).
   template <int B = 0>

@@ -34,9 +34,9 @@ TEST(RunDriver, ACollapsingStepStopsTheRunAsANumericalFailure) {
   EXPECT_EQ(r.code, 3);
   EXPECT_EQ(r.status, "failed");
   EXPECT_NE(r.error.find("below the floor 1e-09 s (1e-6 of the first step); element 7"), std::string::npos) << r.error;
-  EXPECT_LT(sim.steps(), 60);    // 20 healthy steps, then 20 halvings to reach 1e-6 of the first
-  EXPECT_EQ(snapshots, 3);       // t = 0, 0.01 and 0.02 were written before the collapse
-  o.dt_min = 1e-5;               // a scene's own floor
+  EXPECT_LT(sim.steps(), 60);  // 20 healthy steps, then 20 halvings to reach 1e-6 of the first
+  EXPECT_EQ(snapshots, 3);     // t = 0, 0.01 and 0.02 were written before the collapse
+  o.dt_min = 1e-5;             // a scene's own floor
   Collapsing again;
   EXPECT_NE(drive(again, o, [] {}).error.find("below the floor 1e-05 s (numerics.dt_min)"), std::string::npos);
 }

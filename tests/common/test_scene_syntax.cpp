@@ -16,12 +16,14 @@ std::string error_of(const std::string& text) {
 
 TEST(SceneSyntax, DuplicateKeysAreRefusedWithBothLines) {
   EXPECT_EQ(error_of("a: 1\nb: {c: 2}\n"), "");
-  EXPECT_EQ(error_of("a: 1\nb: 2\na: 3\n"), "scene.yaml:3: key 'a' is given twice (first at line 1); give each key once");
+  EXPECT_EQ(error_of("a: 1\nb: 2\na: 3\n"),
+            "scene.yaml:3: key 'a' is given twice (first at line 1); give each key once");
   // nested, and inside a list element
   EXPECT_NE(error_of("f:\n  mesh: {cells: [4], cells: [5]}\n").find("scene.yaml:2: key 'cells' is given twice"),
             std::string::npos);
-  EXPECT_NE(error_of("l:\n  - {x: 1}\n  - x: 1\n    y: 2\n    x: 3\n").find("scene.yaml:5: key 'x' is given twice "
-                                                                          "(first at line 3)"),
+  EXPECT_NE(error_of("l:\n  - {x: 1}\n  - x: 1\n    y: 2\n    x: 3\n")
+                .find("scene.yaml:5: key 'x' is given twice "
+                      "(first at line 3)"),
             std::string::npos);
   EXPECT_EQ(error_of("l:\n  - {x: 1}\n  - {x: 2}\n"), "");  // the same key in two list elements is fine
 }

@@ -26,6 +26,22 @@ double seconds_until_exit(Child& c, double limit) {
   return elapsed();
 }
 
+// Waits until the run in `run_dir` is coupling (its interface history has grown) while all of `procs` run.
+::testing::AssertionResult running_coupled(const std::vector<Child*>& procs, const fs::path& run_dir) {
+  const fs::path hist = run_dir / "coupler" / "interface_history.csv";
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
+    for (Child* c : procs) {
+      launcher::poll(*c);
+      if (!c->running) return ::testing::AssertionFailure() << c->name << " ended:\n" << read_file(c->log);
+    }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 30)
+      return ::testing::AssertionFailure() << "no coupled cycles within 30 s";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // Coupler, fluid_solver and solid_solver on the 2D piston, run long with a long heartbeat timeout (only what the
 // test does can end them soon), started and running coupled (the interface history grows).
 struct RealRun {
@@ -41,28 +57,17 @@ struct RealRun {
       return a;
     };
     cs = {child("coupler", with_sets(coupler_args(ep, scene, dir / "coupler")), dir),
-          child("fluid", with_sets({bin("fluid_solver").string(), scene.string(), "--out", (dir / "fluid").string(),
-                                    "--coupler", ep, "--token", "tok", "--quiet"}),
+          child("fluid",
+                with_sets({bin("fluid_solver").string(), scene.string(), "--out", (dir / "fluid").string(), "--coupler",
+                           ep, "--token", "tok", "--quiet"}),
                 dir),
-          child("solid", with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(),
-                                    "--coupler", ep, "--token", "tok", "--quiet"}),
+          child("solid",
+                with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(), "--coupler",
+                           ep, "--token", "tok", "--quiet"}),
                 dir)};
     for (auto& c : cs) launcher::start(c);
   }
-  ::testing::AssertionResult running_coupled() {
-    const fs::path hist = dir / "coupler" / "interface_history.csv";
-    const auto t0 = std::chrono::steady_clock::now();
-    while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
-      for (auto& c : cs) {
-        launcher::poll(c);
-        if (!c.running) return ::testing::AssertionFailure() << c.name << " ended:\n" << read_file(c.log);
-      }
-      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 30)
-        return ::testing::AssertionFailure() << "no coupled cycles within 30 s";
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return ::testing::AssertionSuccess();
-  }
+  ::testing::AssertionResult running_coupled() { return ::running_coupled({&cs[0], &cs[1], &cs[2]}, dir); }
   nlohmann::json summary(int i) const { return nlohmann::json::parse(read_file(dir / cs[i].name / "summary.json")); }
 };
 
@@ -119,18 +124,12 @@ TEST(SolverSignals, ASolverSeesItsCouplerDieAtOnce) {
 TEST(SolverSignals, AStoppedSolverEndsTheRunWithinFiveSeconds) {
   const fs::path dir = test_dir("stopped_solver");
   const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
-  Child run = child("cosim", {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
-                              "coupling.time.end=1e3", "--quiet"},
+  Child run = child("cosim",
+                    {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
+                     "coupling.time.end=1e3", "--quiet"},
                     dir);
   launcher::start(run);
-  const fs::path hist = dir / "run" / "coupler" / "interface_history.csv";
-  const auto t0 = std::chrono::steady_clock::now();
-  while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
-    launcher::poll(run);
-    ASSERT_TRUE(run.running) << read_file(run.log);
-    ASSERT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_TRUE(running_coupled({&run}, dir / "run"));
   const int fluid = pid_with_arguments({bin("fluid_solver").string(), (dir / "run").string()});
   ASSERT_GT(fluid, 0);
   ::kill(fluid, SIGSTOP);
@@ -163,20 +162,14 @@ TEST(RunDirectory, ASecondRunIntoARunningRunsDirectoryIsRefused) {
   const fs::path dir = test_dir("run_lock");
   const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
   const auto cosim_run = [&](const std::string& name, const std::string& end) {
-    return child(name, {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
-                        "coupling.time.end=" + end, "--quiet"},
+    return child(name,
+                 {bin("cosim").string(), "run", scene.string(), "--out", (dir / "run").string(), "--set",
+                  "coupling.time.end=" + end, "--quiet"},
                  dir);
   };
   Child first = cosim_run("first", "1e3");
   launcher::start(first);
-  const fs::path hist = dir / "run" / "coupler" / "interface_history.csv";
-  const auto t0 = std::chrono::steady_clock::now();
-  while (!fs::exists(hist) || fs::file_size(hist) < 2000) {
-    launcher::poll(first);
-    ASSERT_TRUE(first.running) << read_file(first.log);
-    ASSERT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_TRUE(running_coupled({&first}, dir / "run"));
   Child second = cosim_run("second", "1e-3");
   launcher::start(second);
   const double waited = seconds_until_exit(second, 10.0);

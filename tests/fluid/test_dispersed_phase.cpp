@@ -60,11 +60,12 @@ TEST(DispersedPhase, DenseSlabPacksAgainstAWallStopsAndComesBack) {
   const double e0 = t0[0].energy + t0[1].energy, e1 = t1[0].energy + t1[1].energy;
   FluidScene full = parse_fluid_scene(kSlab, {"fluid.exchange.dispersed=false"});
   const double dt_full = make_simulation(full)->stable_dt();
-  std::printf("mean particle velocity %.1f m/s before the wall, %.1f m/s at the end (restitution %.2f); "
-              "peak alpha %.3f; mass change %.1e / %.1e; energy change %.1e; first step %.3g s, %.1fx the full "
-              "DEM's; %ld steps\n",
-              u_arrival, u_end, -u_end / u_arrival, max_alpha, (t1[0].mass - t0[0].mass) / t0[0].mass,
-              (t1[1].mass - t0[1].mass) / t0[1].mass, (e1 - e0) / e0, dt0, dt0 / dt_full, sim->steps());
+  std::printf(
+      "mean particle velocity %.1f m/s before the wall, %.1f m/s at the end (restitution %.2f); "
+      "peak alpha %.3f; mass change %.1e / %.1e; energy change %.1e; first step %.3g s, %.1fx the full "
+      "DEM's; %ld steps\n",
+      u_arrival, u_end, -u_end / u_arrival, max_alpha, (t1[0].mass - t0[0].mass) / t0[0].mass,
+      (t1[1].mass - t0[1].mass) / t0[1].mass, (e1 - e0) / e0, dt0, dt0 / dt_full, sim->steps());
   EXPECT_GT(u_arrival, 399.0);  // it arrived at full speed ...
   EXPECT_LT(u_end, -10.0);      // ... and came back
   EXPECT_GT(before, 0);

@@ -90,9 +90,10 @@ fluid:
   const auto [wmin, wmax] = std::minmax_element(w.rho.begin(), w.rho.end());
   double wu = 0;
   for (std::size_t i = 0; i < w.rho.size(); ++i) wu = std::max(wu, std::abs(w.velocity[3 * i]));
-  std::printf("steps %ld (full, CFL 0.4) / %ld (trace, CFL 0.9) = %.2f; air L1 differences rho %.1e, p %.1e; "
-              "tungsten density %.1f ... %.1f kg/m^3, speed up to %.1f m/s\n",
-              full->steps(), traced->steps(), double(full->steps()) / traced->steps(), drho, dp, *wmin, *wmax, wu);
+  std::printf(
+      "steps %ld (full, CFL 0.4) / %ld (trace, CFL 0.9) = %.2f; air L1 differences rho %.1e, p %.1e; "
+      "tungsten density %.1f ... %.1f kg/m^3, speed up to %.1f m/s\n",
+      full->steps(), traced->steps(), double(full->steps()) / traced->steps(), drho, dp, *wmin, *wmax, wu);
   EXPECT_GT(double(full->steps()) / traced->steps(), 6.0);  // 2.25 from the CFL numbers, the rest the trace
   EXPECT_LT(drho, 5e-3);
   EXPECT_LT(dp, 5e-3);
