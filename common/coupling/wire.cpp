@@ -163,6 +163,15 @@ std::string validate_faces(const pb::InterfaceFaces& m) {
   if (!e.empty()) return e;
   for (int i = 0; i < m.impedance_size(); ++i)
     if (!(m.impedance(i) > 0)) return fmt::format("InterfaceFaces.impedance[{}]: {}, expected > 0", i, m.impedance(i));
+  // Physics of the geometry: a face has a positive area and a unit normal.
+  for (long f = 0; f < n; ++f) {
+    if (!(m.area(f) > 0)) return fmt::format("InterfaceFaces.area[{}]: {}, expected > 0 (face {})", f, m.area(f), f);
+    double len2 = 0;
+    for (long k = 0; k < d; ++k) len2 += m.normal(f * d + k) * m.normal(f * d + k);
+    if (std::abs(std::sqrt(len2) - 1.0) > 1e-6)
+      return fmt::format("InterfaceFaces.normal[{}..{}]: length {}, expected a unit normal (face {})", f * d,
+                         f * d + d - 1, std::sqrt(len2), f);
+  }
   if (m.nodes_per_face() != 0) {
     if (m.vertex_position_size() % d != 0)
       return fmt::format("InterfaceFaces.vertex_position: {} values, not a multiple of dim = {}",
@@ -181,7 +190,7 @@ std::string validate_faces(const pb::InterfaceFaces& m) {
 std::string validate_samples(const pb::FluidSamples& m) {
   if (m.phases() < 1) return "FluidSamples.phases: 0, expected >= 1";
   const long n = m.count(), np = n * m.phases();
-  return first({size_check("FluidSamples", "alpha", m.alpha_size(), np, "count * phases"),
+  const std::string e = first({size_check("FluidSamples", "alpha", m.alpha_size(), np, "count * phases"),
                 size_check("FluidSamples", "rho", m.rho_size(), np, "count * phases"),
                 size_check("FluidSamples", "normal_velocity", m.normal_velocity_size(), np, "count * phases"),
                 size_check("FluidSamples", "pressure", m.pressure_size(), np, "count * phases"),
@@ -191,6 +200,19 @@ std::string validate_samples(const pb::FluidSamples& m) {
                 finite_check("FluidSamples", "normal_velocity", m.normal_velocity()),
                 finite_check("FluidSamples", "pressure", m.pressure()),
                 finite_check("FluidSamples", "impedance", m.impedance())});
+  if (!e.empty()) return e;
+  // Physics of the states: volume fractions in [0, 1], densities and impedances not negative.
+  for (long i = 0; i < np; ++i) {
+    const long f = i / m.phases(), k = i % m.phases();
+    if (m.alpha(i) < 0.0 || m.alpha(i) > 1.0 + 1e-12)
+      return fmt::format("FluidSamples.alpha[{}]: {}, expected a volume fraction in [0, 1] (face {}, phase {})", i,
+                         m.alpha(i), f, k);
+    if (m.rho(i) < 0.0)
+      return fmt::format("FluidSamples.rho[{}]: {}, expected a density >= 0 (face {}, phase {})", i, m.rho(i), f, k);
+    if (m.impedance(i) < 0.0)
+      return fmt::format("FluidSamples.impedance[{}]: {}, expected >= 0 (face {}, phase {})", i, m.impedance(i), f, k);
+  }
+  return "";
 }
 
 std::string validate_states(const pb::InterfaceStates& m) {

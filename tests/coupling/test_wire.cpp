@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
 
 #include "common/coupling/scene_hash.h"
 #include "common/coupling/wire.h"
@@ -47,6 +48,19 @@ TEST(CouplingWire, FacesRoundTripAndValidate) {
   to_pb(two_faces(), *e.mutable_faces());
   e.mutable_faces()->set_impedance(1, -1.0);
   EXPECT_EQ(validate(e), "InterfaceFaces.impedance[1]: -1, expected > 0");
+  // Physically invalid geometry is refused naming the field, the face and the value.
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_area(0, -2.0);
+  EXPECT_EQ(validate(e), "InterfaceFaces.area[0]: -2, expected > 0 (face 0)");
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_area(1, 0.0);
+  EXPECT_EQ(validate(e), "InterfaceFaces.area[1]: 0, expected > 0 (face 1)");
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_normal(2, 0.0);  // face 1's normal (0, 0)
+  EXPECT_EQ(validate(e), "InterfaceFaces.normal[2..3]: length 0, expected a unit normal (face 1)");
+  to_pb(two_faces(), *e.mutable_faces());
+  e.mutable_faces()->set_normal(0, -3.0);
+  EXPECT_EQ(validate(e), "InterfaceFaces.normal[0..1]: length 3, expected a unit normal (face 0)");
 }
 
 TEST(CouplingWire, SamplesAndDtValidation) {
@@ -60,6 +74,18 @@ TEST(CouplingWire, SamplesAndDtValidation) {
   EXPECT_EQ(validate(e), "");
   e.mutable_samples()->mutable_pressure()->Add(1.0);
   EXPECT_EQ(validate(e), "FluidSamples.pressure: 5 values, expected count * phases = 4");
+  // Physically invalid states: a volume fraction outside [0, 1], a negative density or impedance.
+  for (const auto& [field, index, value, expected] :
+       std::vector<std::tuple<std::string, int, double, std::string>>{
+           {"alpha", 3, 1.5, "FluidSamples.alpha[3]: 1.5, expected a volume fraction in [0, 1] (face 1, phase 1)"},
+           {"alpha", 0, -0.1, "FluidSamples.alpha[0]: -0.1, expected a volume fraction in [0, 1] (face 0, phase 0)"},
+           {"rho", 2, -1.0, "FluidSamples.rho[2]: -1, expected a density >= 0 (face 1, phase 0)"},
+           {"impedance", 1, -5.0, "FluidSamples.impedance[1]: -5, expected >= 0 (face 0, phase 1)"}}) {
+    FluidSamples bad = s;
+    (field == "alpha" ? bad.alpha : field == "rho" ? bad.rho : bad.impedance)[index] = value;
+    to_pb(bad, *e.mutable_samples());
+    EXPECT_EQ(validate(e), expected);
+  }
   pb::Envelope d = make_envelope(Role::Fluid, "t", 0, 0.0);
   d.mutable_dt_proposal()->set_dt(0.0);
   EXPECT_EQ(validate(d), "DtProposal.dt: 0, expected a finite number > 0");
