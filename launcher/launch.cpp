@@ -108,9 +108,12 @@ int run(const LaunchOptions& opt) {
           for (std::size_t at; (at = c.find(key)) != std::string::npos;) c.replace(at, key.size(), value);
         return c;
       };
-      if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(l->get<std::string>("fluid", ""));
-      if (eff.solid_cmd.empty()) eff.solid_cmd = expand(l->get<std::string>("solid", ""));
-      if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(l->get<std::string>("coupler", ""));
+      // Each key is read (and so known) even where the command line's --fluid-exe etc. override it.
+      const std::string fluid = l->get<std::string>("fluid", ""), solid = l->get<std::string>("solid", ""),
+                        coupler = l->get<std::string>("coupler", "");
+      if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(fluid);
+      if (eff.solid_cmd.empty()) eff.solid_cmd = expand(solid);
+      if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(coupler);
       l->finish();
     }
     if (!root.has("fluid")) root.fail("fluid", "a fluid: section (every run has a fluid)");

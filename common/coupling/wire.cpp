@@ -190,16 +190,17 @@ std::string validate_faces(const pb::InterfaceFaces& m) {
 std::string validate_samples(const pb::FluidSamples& m) {
   if (m.phases() < 1) return "FluidSamples.phases: 0, expected >= 1";
   const long n = m.count(), np = n * m.phases();
-  const std::string e = first({size_check("FluidSamples", "alpha", m.alpha_size(), np, "count * phases"),
-                size_check("FluidSamples", "rho", m.rho_size(), np, "count * phases"),
-                size_check("FluidSamples", "normal_velocity", m.normal_velocity_size(), np, "count * phases"),
-                size_check("FluidSamples", "pressure", m.pressure_size(), np, "count * phases"),
-                size_check("FluidSamples", "impedance", m.impedance_size(), np, "count * phases"),
-                size_check("FluidSamples", "wetted", m.wetted_size(), n, "count"),
-                finite_check("FluidSamples", "alpha", m.alpha()), finite_check("FluidSamples", "rho", m.rho()),
-                finite_check("FluidSamples", "normal_velocity", m.normal_velocity()),
-                finite_check("FluidSamples", "pressure", m.pressure()),
-                finite_check("FluidSamples", "impedance", m.impedance())});
+  const std::string e =
+      first({size_check("FluidSamples", "alpha", m.alpha_size(), np, "count * phases"),
+             size_check("FluidSamples", "rho", m.rho_size(), np, "count * phases"),
+             size_check("FluidSamples", "normal_velocity", m.normal_velocity_size(), np, "count * phases"),
+             size_check("FluidSamples", "pressure", m.pressure_size(), np, "count * phases"),
+             size_check("FluidSamples", "impedance", m.impedance_size(), np, "count * phases"),
+             size_check("FluidSamples", "wetted", m.wetted_size(), n, "count"),
+             finite_check("FluidSamples", "alpha", m.alpha()), finite_check("FluidSamples", "rho", m.rho()),
+             finite_check("FluidSamples", "normal_velocity", m.normal_velocity()),
+             finite_check("FluidSamples", "pressure", m.pressure()),
+             finite_check("FluidSamples", "impedance", m.impedance())});
   if (!e.empty()) return e;
   // Physics of the states: volume fractions in [0, 1], densities and impedances not negative.
   for (long i = 0; i < np; ++i) {

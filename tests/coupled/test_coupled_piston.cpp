@@ -3,6 +3,8 @@
 // conforming all-Lagrangian run of configs/solid_piston_1d.yaml.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -223,6 +225,19 @@ TEST(CoupledPiston, Piston1DWithThePythonPiston) {
   EXPECT_LT(d.plain, 0.05);
   EXPECT_LT(d.inertia, 0.005);
   EXPECT_LT(d.conforming, 0.005);
+}
+
+// --solid-exe overrides the scene's launcher: solid program (the scene's key used to be reported unknown, exit 2):
+// the run uses the command line's command, here the same piston started with python3 -u.
+TEST(CoupledPiston, SolidExeOverridesTheScenesLauncherCommand) {
+  const fs::path dir = run_dir("solid_exe_override");
+  const std::string exe = "/usr/bin/python3 -u " + (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string();
+  ASSERT_EQ(cosim_run(scene_file("piston_1d"), dir, "--solid-exe '" + exe + "' --set coupling.time.end=0.01"), 0)
+      << run_logs(dir);
+  const nlohmann::json solid = nlohmann::json::parse(read_text(dir / "launch.json"))["commands"]["solid"];
+  ASSERT_GE(solid.size(), 2u) << solid.dump();
+  EXPECT_EQ(solid[0], "/usr/bin/python3");
+  EXPECT_EQ(solid[1], "-u");
 }
 
 // The pipelined cycle (default: the solid's step n+1 runs while the fluid advances step n, the fluid's proposal

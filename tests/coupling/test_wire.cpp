@@ -75,8 +75,7 @@ TEST(CouplingWire, SamplesAndDtValidation) {
   e.mutable_samples()->mutable_pressure()->Add(1.0);
   EXPECT_EQ(validate(e), "FluidSamples.pressure: 5 values, expected count * phases = 4");
   // Physically invalid states: a volume fraction outside [0, 1], a negative density or impedance.
-  for (const auto& [field, index, value, expected] :
-       std::vector<std::tuple<std::string, int, double, std::string>>{
+  for (const auto& [field, index, value, expected] : std::vector<std::tuple<std::string, int, double, std::string>>{
            {"alpha", 3, 1.5, "FluidSamples.alpha[3]: 1.5, expected a volume fraction in [0, 1] (face 1, phase 1)"},
            {"alpha", 0, -0.1, "FluidSamples.alpha[0]: -0.1, expected a volume fraction in [0, 1] (face 0, phase 0)"},
            {"rho", 2, -1.0, "FluidSamples.rho[2]: -1, expected a density >= 0 (face 1, phase 0)"},
