@@ -26,6 +26,7 @@ class Heartbeat {
 
  private:
   void loop();
+  void declare_lost(const std::string& why);  // sets the message, then lost_
 
   ZmqContext& ctx_;
   std::string endpoint_, token_;

@@ -3,6 +3,8 @@
 #include <zmq.h>
 
 #include <cerrno>
+#include <cstdint>
+#include <cstring>
 
 #include "common/coupling/errors.h"
 
@@ -21,7 +23,9 @@ ZmqContext::ZmqContext() : ctx_(zmq_ctx_new()) {
 ZmqContext::~ZmqContext() { zmq_ctx_term(ctx_); }
 
 ZmqSocket::ZmqSocket(ZmqContext& ctx, Type type)
-    : sock_(zmq_socket(ctx.get(), type == Type::Dealer ? ZMQ_DEALER : ZMQ_ROUTER)) {
+    : sock_(zmq_socket(ctx.get(), type == Type::Dealer   ? ZMQ_DEALER
+                                  : type == Type::Router ? ZMQ_ROUTER
+                                                         : ZMQ_PAIR)) {
   if (!sock_) fail("socket", "");
   set_linger(0);
 }
@@ -45,6 +49,19 @@ void ZmqSocket::set_linger(int ms) {
 void ZmqSocket::set_router_mandatory() {
   int on = 1;
   if (zmq_setsockopt(sock_, ZMQ_ROUTER_MANDATORY, &on, sizeof on) != 0) fail("router_mandatory", endpoint_);
+}
+
+void ZmqSocket::monitor_disconnections(const std::string& inproc_endpoint) {
+  if (zmq_socket_monitor(sock_, inproc_endpoint.c_str(), ZMQ_EVENT_DISCONNECTED) != 0)
+    fail("socket monitor", inproc_endpoint);
+}
+
+// A monitor event: frame 1 holds the event (uint16) and a value (uint32), frame 2 the endpoint.
+bool ZmqSocket::is_disconnection(const Frames& event) {
+  std::uint16_t id = 0;
+  if (event.size() != 2 || event[0].size() < sizeof id) return false;
+  std::memcpy(&id, event[0].data(), sizeof id);
+  return id == ZMQ_EVENT_DISCONNECTED;
 }
 
 std::string ZmqSocket::last_endpoint() const {

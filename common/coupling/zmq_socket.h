@@ -23,7 +23,7 @@ class ZmqContext {
 
 class ZmqSocket {
  public:
-  enum class Type { Dealer, Router };
+  enum class Type { Dealer, Router, Pair };
   ZmqSocket(ZmqContext& ctx, Type type);
   ~ZmqSocket();
   ZmqSocket(const ZmqSocket&) = delete;
@@ -43,6 +43,11 @@ class ZmqSocket {
   bool send(const Frames& frames, int timeout_ms = 1000);
   // Waits up to timeout_ms (-1: forever) for one message; false when none arrived.
   bool receive(Frames& frames, int timeout_ms);
+
+  // Publishes this socket's disconnections as events on `inproc_endpoint` (a Pair socket connected there
+  // receives them); is_disconnection tells such an event.
+  void monitor_disconnections(const std::string& inproc_endpoint);
+  static bool is_disconnection(const Frames& event);
 
   void* handle() const { return sock_; }
 
