@@ -106,14 +106,17 @@ class Solver final : public FluidSimulation {
             if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
             for (int k = 0; k < NP; ++k) {
               double s = 0;
-              // A trace phase is advected with the carrier's pressure: its sound speed does not limit the step.
-              double cs = eos_[k].sound_speed(Wp[Lay::rho(k)][c], Wp[Lay::pres(k)][c]);
+              // A trace phase is advected with the carrier's pressure: its sound speed does not limit the step; a
+              // dispersed phase's waves are its compaction waves (docs/methods.md §2.7-2.8).
+              const double rho = Wp[Lay::rho(k)][c];
+              double cs;
               if constexpr (NP == 2) {
                 const double ak = k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c];
-                if (ak < trace_[k]) cs = 0.0;
-                // A dispersed phase's waves are its compaction waves (docs/methods.md §2.8).
-                if (k == 1 && scene_.exchange.dispersed)
-                  cs = scene_.exchange.particle_stress.wave_speed(ak, Wp[Lay::rho(k)][c]);
+                cs = k == 1 && scene_.exchange.dispersed ? scene_.exchange.particle_stress.wave_speed(ak, rho)
+                     : ak < trace_[k]                    ? 0.0
+                                                         : eos_[k].sound_speed(rho, Wp[Lay::pres(k)][c]);
+              } else {
+                cs = eos_[k].sound_speed(rho, Wp[Lay::pres(k)][c]);
               }
               for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
               acc = std::max(acc, s);

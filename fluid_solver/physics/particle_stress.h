@@ -33,15 +33,21 @@ struct ParticleStress {
     pi = base + slope * std::max(0.0, a - aa);
     dpi = slope;
   }
+  // eval with the exponent known at compile time where it is the default 3 (the rows of the solver choose the
+  // same way at the row level).
+  void eval_any(double a, double& pi, double& dpi) const {
+    if (beta == 3.0) eval<3>(a, pi, dpi);
+    else eval<0>(a, pi, dpi);
+  }
   double stress(double a) const {
     double pi, dpi;
-    eval(a, pi, dpi);
+    eval_any(a, pi, dpi);
     return pi;
   }
   // The speed of compaction waves in the particle phase of material density rho_p.
   double wave_speed(double a, double rho_p) const {
     double pi, dpi;
-    eval(a, pi, dpi);
+    eval_any(a, pi, dpi);
     return std::sqrt(dpi / rho_p);
   }
 };
