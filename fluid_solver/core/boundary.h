@@ -64,10 +64,10 @@ class BoundaryFiller {
           }
           const std::size_t cg = at(d, ghost, e1, a, e2, b), cs = at(d, src, e1, a, e2, b);
           if (kind == BoundaryKind::Inflow) {
-            for (int v = 0; v < Lay::kPrim; ++v) W.var(v)[cg] = inflow_[d][side][v];
+            for (int v = 0; v < W.vars; ++v) W.var(v)[cg] = inflow_[d][side][v];
             continue;
           }
-          for (int v = 0; v < Lay::kPrim; ++v) W.var(v)[cg] = W.var(v)[cs];
+          for (int v = 0; v < W.vars; ++v) W.var(v)[cg] = W.var(v)[cs];
           if (kind == BoundaryKind::Wall)
             for (int k = 0; k < NP; ++k) W.var(Lay::vel(k, d))[cg] = -W.var(Lay::vel(k, d))[cs];
         }

@@ -28,7 +28,7 @@ bool ghost_state(const GhostRecord& g, const FieldArray& W, const eos::Stiffened
   if (g.stencil_size == 0) return false;
   for (int q = 0; q < Lay::kPrim; ++q) v[q] = 0.0;
   for (int s = 0; s < g.stencil_size; ++s)
-    for (int q = 0; q < Lay::kPrim; ++q) v[q] += g.weights[s] * W.var(q)[g.stencil[s]];
+    for (int q = 0; q < W.vars; ++q) v[q] += g.weights[s] * W.var(q)[g.stencil[s]];
   const double L = g.image_distance, dG = g.distance;
   const double factor = L > dG ? L / (L - dG) : 2.0;  // 1 + d_G / (L - d_G)
   for (int k = 0; k < NP; ++k) {
@@ -51,7 +51,7 @@ void fill_ghost_cells(const EmbeddedState& e, FieldArray& W, const eos::Stiffene
   double v[Lay::kPrim];
   for (const GhostRecord& g : e.ghosts)  // no flow cell near the image point: keep the last state
     if (ghost_state<DIM, NP>(g, W, eos, v))
-      for (int q = 0; q < Lay::kPrim; ++q) W.var(q)[g.cell] = v[q];
+      for (int q = 0; q < W.vars; ++q) W.var(q)[g.cell] = v[q];
 }
 
 // The side ghosts of thin bodies (EmbeddedState::side_ghosts), kPrim values each, per direction, into `out`.
@@ -65,7 +65,7 @@ void fill_side_ghosts(const EmbeddedState& e, const FieldArray& W, const eos::St
     for (std::size_t i = 0; i < sg.size(); ++i) {
       double* v = out[D].data() + i * Lay::kPrim;
       if (!ghost_state<DIM, NP>(sg[i].ghost, W, eos, v))
-        for (int q = 0; q < Lay::kPrim; ++q) v[q] = W.var(q)[sg[i].ghost.cell];
+        for (int q = 0; q < W.vars; ++q) v[q] = W.var(q)[sg[i].ghost.cell];
     }
   }
 }

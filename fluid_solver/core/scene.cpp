@@ -275,6 +275,21 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
       st.delta = ps->get<double>("delta", st.delta, config::in_range(1e-4, 0.1));
       ps->finish();
     }
+    GranularGas& gr = s.exchange.granular;
+    gr.enabled = ex->get<bool>("granular_temperature", s.exchange.dispersed);
+    if (gr.enabled && !s.exchange.dispersed)
+      ex->fail("granular_temperature", "a granular temperature for a dispersed phase (dispersed: true)");
+    if (gr.enabled && s.flux != FluxKind::AUFS)
+      ex->fail("granular_temperature",
+               "a granular temperature with numerics.flux: aufs (or granular_temperature: false with this flux)");
+    if (!gr.enabled && ex->has("restitution"))
+      ex->fail("restitution",
+               "the restitution of particle collisions for a granular temperature "
+               "(granular_temperature: true)");
+    gr.restitution = ex->get<double>("restitution", gr.restitution, config::in_range(0.0, 1.0));
+    gr.packing = s.exchange.particle_stress.packing;
+    gr.delta = s.exchange.particle_stress.delta;
+    gr.diameter = s.exchange.particle_diameter;
     if (s.num_phases() == 1) ex->fail("velocity_relaxation", "no exchange section for a single-phase scene");
     ex->finish();
   }

@@ -9,6 +9,7 @@
 
 #include "common/config/config.h"
 #include "common/eos/stiffened_gas.h"
+#include "fluid_solver/physics/granular.h"
 #include "fluid_solver/physics/particle_stress.h"
 
 namespace cosim::fluid {
@@ -77,6 +78,7 @@ struct Exchange {
   // between particles (docs/methods.md §2.8).
   bool dispersed = false;
   ParticleStress particle_stress;
+  GranularGas granular;  // the dispersed phase's granular temperature (docs/methods.md §2.9)
 };
 
 // A body embedded in the background mesh: a closed surface with a prescribed rigid velocity.

@@ -25,12 +25,14 @@ class StateError : public app::NumericalError {
 // Interior cell-centred fields of one phase, i fastest. velocity holds 3 components per cell.
 struct PhaseFields {
   std::vector<double> alpha, rho, velocity, p, T;
+  std::vector<double> theta;  // granular temperature [m^2/s^2] of a dispersed phase (docs/methods.md §2.9), else empty
 };
 
 // Primitive state of one phase in one cell (for coupling samples).
 struct CellSample {
   double alpha = 1, rho = 0, p = 0, c = 0;  // [-], [kg/m^3], [Pa], [m/s]
   std::array<double, 3> velocity{0, 0, 0};  // [m/s]
+  double granular = 0;                      // a dispersed phase's granular energy per unit mass [J/kg]
 };
 
 struct PhaseTotals {

@@ -35,15 +35,20 @@ enum class ReconMode { First, Minmod, VanLeer, MC };
 template <int DIM, int NP, FluxKind FK>
 class Solver final : public FluidSimulation {
   using Lay = Layout<DIM, NP>;
-  static constexpr int kFaceVars = NP * (2 + DIM) + (NP > 1 ? 6 : 0);
+  static constexpr int kFaceVars = NP * (2 + DIM) + (NP > 1 ? 7 : 0);
 
  public:
-  explicit Solver(const FluidScene& scene) : scene_(scene), g_(scene.cells, scene.lower, scene.upper) {
+  explicit Solver(const FluidScene& scene)
+      : scene_(scene),
+        g_(scene.cells, scene.lower, scene.upper),
+        gran_(NP == 2 && scene.exchange.dispersed && scene.exchange.granular.enabled),
+        ncons_(Lay::cons_vars(gran_)),
+        nprim_(Lay::prim_vars(gran_)) {
     for (int k = 0; k < NP; ++k) eos_[k] = scene.phases[k].eos;
-    U_.resize(Lay::kCons, g_.total);
-    U0_.resize(Lay::kCons, g_.total);
-    R_.resize(Lay::kCons, g_.total);
-    W_.resize(Lay::kPrim, g_.total);
+    U_.resize(ncons_, g_.total);
+    U0_.resize(ncons_, g_.total);
+    R_.resize(ncons_, g_.total);
+    W_.resize(nprim_, g_.total);
     // The scene's (or --threads) count, else one thread per 16 rows of cells along x (1D: one row, one thread).
     omp_set_num_threads(scene.threads > 0 ? scene.threads : app::threads_for(static_cast<long>(g_.n[1]) * g_.n[2], 16));
     allocate_scratch();
@@ -55,6 +60,9 @@ class Solver final : public FluidSimulation {
     if (NP == 2 && scene.exchange.pressure_relaxation) trace_.fill(scene.exchange.trace_alpha);
     if (NP == 2 && scene.exchange.dispersed) trace_[NP - 1] = 2.0;  // a trace everywhere (§2.8)
     set_initial_state<DIM, NP>(scene, g_, eos_, U_);
+    if constexpr (NP == 2)
+      if (gran_)  // at rest relative to its mean motion: all of E - u^2/2 is the material's
+        for (std::size_t c = 0; c < g_.total; ++c) U_.var(Lay::heat)[c] = U_.var(Lay::energy(1))[c] - kinetic(U_, 1, c);
   }
 
   const FluidScene& scene() const override { return scene_; }
@@ -97,7 +105,7 @@ class Solver final : public FluidSimulation {
     compute_primitives(U_);
     double smax = 0.0;
     const double* Wp[Lay::kPrim];
-    for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
+    for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
     const std::uint8_t* kind = emb_.active ? emb_.kind.data() : nullptr;
     for_each_row(
         [&](std::size_t base, int len, double& acc) {
@@ -112,7 +120,7 @@ class Solver final : public FluidSimulation {
               double cs;
               if constexpr (NP == 2) {
                 const double ak = k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c];
-                cs = k == 1 && scene_.exchange.dispersed ? scene_.exchange.particle_stress.wave_speed(ak, rho)
+                cs = k == 1 && scene_.exchange.dispersed ? dispersed_wave_speed(ak, rho, Wp, c)
                      : ak < trace_[k]                    ? 0.0
                                                          : eos_[k].sound_speed(rho, Wp[Lay::pres(k)][c]);
               } else {
@@ -159,6 +167,7 @@ class Solver final : public FluidSimulation {
     f.velocity.assign(3 * n, 0.0);
     f.p.resize(n);
     f.T.resize(n);
+    if (k == 1 && gran_) f.theta.resize(n);
     std::size_t o = 0;
     for (int kk = 0; kk < g_.n[2]; ++kk)
       for (int j = 0; j < g_.n[1]; ++j)
@@ -173,11 +182,12 @@ class Solver final : public FluidSimulation {
             f.velocity[3 * o + d] = U_.var(Lay::mom(k, d))[c] / m;
             q += f.velocity[3 * o + d] * f.velocity[3 * o + d];
           }
-          const double rhoe = U_.var(Lay::energy(k))[c] / a - 0.5 * rho * q;
+          const double rhoe = material_energy(U_, k, c) / a;
           f.alpha[o] = a;
           f.rho[o] = rho;
           f.p[o] = eos_[k].pressure(rho, rhoe / rho);
           f.T[o] = eos_[k].temperature(rho, f.p[o]);
+          if (k == 1 && gran_) f.theta[o] = std::max(0.0, granular_per_mass(U_, c) * (2.0 / 3.0));
         }
     return f;
   }
@@ -198,9 +208,10 @@ class Solver final : public FluidSimulation {
         }
         o.alpha = a;
         o.rho = m / a;
-        const double rhoe = U_.var(Lay::energy(k))[c] / a - 0.5 * o.rho * q;
+        const double rhoe = material_energy(U_, k, c) / a;
         o.p = eos_[k].pressure(o.rho, rhoe / o.rho);
         o.c = eos_[k].sound_speed(o.rho, o.p);
+        if (k == 1 && gran_) o.granular = std::max(0.0, granular_per_mass(U_, c));
       }
     }
   }
@@ -249,14 +260,40 @@ class Solver final : public FluidSimulation {
     result = r;
   }
 
+  // |alpha rho u|^2 / (2 alpha rho) of phase k in cell c.
+  static double kinetic(const FieldArray& U, int k, std::size_t c) {
+    double q = 0;
+    for (int d = 0; d < DIM; ++d) q += U.var(Lay::mom(k, d))[c] * U.var(Lay::mom(k, d))[c];
+    return 0.5 * q / U.var(Lay::mass(k))[c];
+  }
+  // alpha rho e of phase k in cell c: the total energy less the kinetic energy, and less the granular energy of a
+  // dispersed phase (its material energy is a variable of its own there).
+  double material_energy(const FieldArray& U, int k, std::size_t c) const {
+    if constexpr (NP == 2)
+      if (k == 1 && gran_) return U.var(Lay::heat)[c];
+    return U.var(Lay::energy(k))[c] - kinetic(U, k, c);
+  }
+  // k = (alpha rho E - alpha rho e) / (alpha rho) - u^2/2 of the dispersed phase (docs/methods.md §2.9).
+  double granular_per_mass(const FieldArray& U, std::size_t c) const {
+    return (U.var(Lay::energy(NP - 1))[c] - kinetic(U, NP - 1, c) - U.var(Lay::heat)[c]) / U.var(Lay::mass(NP - 1))[c];
+  }
+  // The fastest wave of a dispersed phase: its compaction waves, or the sound of its granular gas.
+  double dispersed_wave_speed(double a, double rho, const double* const* Wp, std::size_t c) const {
+    const double cs = scene_.exchange.particle_stress.wave_speed(a, rho);
+    if (!gran_) return cs;
+    double pg, cg;
+    scene_.exchange.granular.pressure_and_speed(a, rho, Wp[Lay::pgran][c], pg, cg);
+    return std::max(cs, cg);
+  }
+
   // Interior primitives from conservative U; throws StateError naming the first bad cell.
   void compute_primitives(const FieldArray& U) {
     if (primitives_valid_ && &U == &U_) return;
     double bad = 0.0;
     const double* Uc[Lay::kCons];
     double* Wp[Lay::kPrim];
-    for (int v = 0; v < Lay::kCons; ++v) Uc[v] = U.var(v);
-    for (int v = 0; v < Lay::kPrim; ++v) Wp[v] = W_.var(v);
+    for (int v = 0; v < ncons_; ++v) Uc[v] = U.var(v);
+    for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
     for_each_row(
         [&](std::size_t base, int len, double& acc) {
           for (int i = 0; i < len; ++i) {
@@ -278,7 +315,13 @@ class Solver final : public FluidSimulation {
                 Wp[Lay::vel(k, d)][c] = u;
                 q += u * u;
               }
-              const double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+              double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+              if constexpr (NP == 2)
+                if (k == 1 && gran_) {  // its material energy apart, and k from what is left (§2.9)
+                  const double h = Uc[Lay::heat][c] / a;
+                  Wp[Lay::pgran][c] = (rhoe - h) / rho;
+                  rhoe = h;
+                }
               const auto& e = eos_[k];
               const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
               const double c2 = e.gamma * (p + e.pinf) / rho;
@@ -339,7 +382,7 @@ class Solver final : public FluidSimulation {
     double* Uv[Lay::kCons];
     const double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
-    for (int v = 0; v < Lay::kCons; ++v) {
+    for (int v = 0; v < ncons_; ++v) {
       Uv[v] = U_.var(v);
       U0v[v] = U0_.var(v);
       Rv[v] = R_.var(v);
@@ -347,7 +390,7 @@ class Solver final : public FluidSimulation {
     double dummy = 0;
     for_each_row(
         [&](std::size_t base, int len, double&) {
-          for (int v = 0; v < Lay::kCons; ++v) {
+          for (int v = 0; v < ncons_; ++v) {
             double* u = Uv[v] + base;
             const double* u0 = U0v[v] + base;
             const double* r = Rv[v] + base;
@@ -366,12 +409,8 @@ class Solver final : public FluidSimulation {
             }
           }
           if constexpr (NP == 2) {
-            const bool vrelax = scene_.exchange.velocity == VelocityRelaxation::Instant;
-            const bool prelax = scene_.exchange.pressure_relaxation;
-            if (vrelax && prelax) relax_row<true, true>(base, len);
-            else if (vrelax) relax_row<true, false>(base, len);
-            else if (prelax) relax_row<false, true>(base, len);
-            else relax_row<false, false>(base, len);
+            relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
+                        scene_.exchange.pressure_relaxation);
           }
         },
         dummy);
@@ -397,7 +436,13 @@ class Solver final : public FluidSimulation {
           U_.var(Lay::mom(k, d))[c] = a * rho * u;
           q += u * u;
         }
-        U_.var(Lay::energy(k))[c] = a * (eos_[k].rho_e(rho, p) + 0.5 * rho * q);
+        const double rhoe = eos_[k].rho_e(rho, p);
+        U_.var(Lay::energy(k))[c] = a * (rhoe + 0.5 * rho * q);
+        if constexpr (NP == 2)
+          if (k == 1 && gran_) {
+            U_.var(Lay::heat)[c] = a * rhoe;
+            U_.var(Lay::energy(k))[c] += a * rho * W_.var(Lay::pgran)[c];
+          }
       }
     }
   }
@@ -506,7 +551,7 @@ class Solver final : public FluidSimulation {
       for (; it != sgs.end() && it->flow_cell == c; ++it)
         (it->across_high ? above : below) = values + static_cast<std::size_t>(it - sgs.begin()) * Lay::kPrim;
       const std::size_t e = c - first;
-      for (int v = 0; v < Lay::kPrim; ++v) {
+      for (int v = 0; v < nprim_; ++v) {
         if (is_sound_var(v)) continue;
         const double* w = W_.var(v);
         const double wm = below ? below[v] : w[c - s], wp = above ? above[v] : w[c + s];
@@ -524,8 +569,20 @@ class Solver final : public FluidSimulation {
   static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
 
   // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
-  // (same operators as relax_velocity / relax_pressure_kernel, docs/methods.md §2.5).
-  template <bool VRELAX, bool PRELAX>
+  // (same operators as relax_velocity / relax_pressure_kernel, docs/methods.md §2.5). With a granular temperature
+  // (GRAN) the dispersed phase's granular energy is kept: what the relaxations exchange is its material's.
+  void relax_cells(std::size_t base, int len, bool vrelax, bool prelax) {
+    if (gran_) relax_cells_as<true>(base, len, vrelax, prelax);
+    else relax_cells_as<false>(base, len, vrelax, prelax);
+  }
+  template <bool GRAN>
+  void relax_cells_as(std::size_t base, int len, bool vrelax, bool prelax) {
+    if (vrelax && prelax) relax_row<true, true, GRAN>(base, len);
+    else if (vrelax) relax_row<true, false, GRAN>(base, len);
+    else if (prelax) relax_row<false, true, GRAN>(base, len);
+    else relax_row<false, false, GRAN>(base, len);  // clamps alpha
+  }
+  template <bool VRELAX, bool PRELAX, bool GRAN>
   void relax_row(std::size_t base, int len) {
     const double amin = scene_.exchange.alpha_min;
     double* al = U_.var(Lay::alpha) + base;
@@ -539,12 +596,20 @@ class Solver final : public FluidSimulation {
       q0[d] = U_.var(Lay::mom(0, d)) + base;
       q1[d] = U_.var(Lay::mom(1, d)) + base;
     }
+    double* H = nullptr;
+    if constexpr (GRAN) H = U_.var(Lay::heat) + base;
     const eos::StiffenedGas e0 = eos_[0], e1 = eos_[1];
 #pragma GCC ivdep
     for (int i = 0; i < len; ++i) {
       double a = std::min(std::max(al[i], amin), 1.0 - amin);
       const double M0 = m0[i], M1 = m1[i];
       double en0 = E0[i], en1 = E1[i], k0 = 0.0, k1 = 0.0;
+      double G = 0.0;  // the granular energy, E - kinetic - material
+      if constexpr (GRAN) {
+        double q = 0;
+        for (int d = 0; d < DIM; ++d) q += q1[d][i] * q1[d][i];
+        G = en1 - 0.5 * q / M1 - H[i];
+      }
       for (int d = 0; d < DIM; ++d) {
         double p0 = q0[d][i], p1 = q1[d][i];
         if constexpr (VRELAX) {  // mass-weighted mean velocity; kinetic energy lost becomes internal energy
@@ -559,30 +624,43 @@ class Solver final : public FluidSimulation {
         k0 += p0 * p0;
         k1 += p1 * p1;
       }
-      if constexpr (PRELAX)
-        relax_pressure_kernel(a, M0, M1, 0.5 * k0 / (M0 * M0), 0.5 * k1 / (M1 * M1), en0, en1, e0, e1);
+      if constexpr (PRELAX)  // the granular energy counts with the kinetic: the kernel sees the material's
+        relax_pressure_kernel(a, M0, M1, 0.5 * k0 / (M0 * M0), 0.5 * k1 / (M1 * M1) + G / M1, en0, en1, e0, e1);
+      if constexpr (GRAN) H[i] = en1 - 0.5 * k1 / M1 - G;
       al[i] = a;
       E0[i] = en0;
       E1[i] = en1;
     }
   }
 
+  // Drag, heat exchange and, with a granular temperature, the loss of the particles' random motion to drag (its
+  // energy decays at twice the slip's rate of the particles alone) and to inelastic collisions (GranularGas); the
+  // granular energy lost becomes the material's heat (docs/methods.md §2.9, §6).
   void exchange_sources(double dt) {
     const auto& ex = scene_.exchange;
     const bool drag = ex.velocity == VelocityRelaxation::Drag;
-    if (!drag && !ex.heat_transfer) return;
+    if (!drag && !ex.heat_transfer && !gran_) return;
     double dummy = 0;
     for_each_row(
         [&](std::size_t base, int len, double&) {
           for (int i = 0; i < len; ++i) {
-            CellState2 s = load_cell(base + i);
-            if (drag) apply_drag(s, eos_, ex, DIM, dt);
+            const std::size_t c = base + i;
+            const double G = gran_ ? U_.var(Lay::energy(NP - 1))[c] - kinetic(U_, NP - 1, c) - U_.var(Lay::heat)[c] : 0;
+            CellState2 s = load_cell(c);
+            s.E[NP - 1] -= G;  // drag and heat exchange see the material's energy
+            const double beta = drag ? apply_drag(s, eos_, ex, DIM, dt) : 0.0;
             if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
-            store_cell(base + i, s);
+            s.E[NP - 1] += G;
+            store_cell(c, s);
+            if (gran_) {
+              const double m = s.m[NP - 1];
+              const double k = ex.granular.after_collisions(1.0 - s.alpha0, G / m * std::exp(-2.0 * dt * beta / m), dt);
+              U_.var(Lay::heat)[c] = s.E[NP - 1] - kinetic(U_, NP - 1, c) - m * k;
+            }
           }
           // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
           // (vectorised row pass).
-          if (ex.pressure_relaxation) relax_row<false, true>(base, len);
+          if (ex.pressure_relaxation) relax_cells(base, len, false, true);
         },
         dummy);
   }
@@ -624,10 +702,12 @@ class Solver final : public FluidSimulation {
   }
 
   // Face-row buffer layout: per phase (mass, mom[DIM], energy) fluxes, then for NP = 2 the
-  // phase-0 Lagrangian parts into the left cell (3) and into the right cell (3).
+  // phase-0 Lagrangian parts into the left cell (3) and into the right cell (3), and the material-energy flux of a
+  // dispersed phase with a granular temperature.
   static constexpr int fvar_flux(int k, int q) { return k * (2 + DIM) + q; }
   static constexpr int fvar_lag_left = NP * (2 + DIM);
   static constexpr int fvar_lag_right = NP * (2 + DIM) + 3;
+  static constexpr int fvar_heat = NP * (2 + DIM) + 6;  // a dispersed phase's material energy (granular temperature)
 
   // Per-thread scratch: the face-row buffer, two rows of reconstructed edge states, and a one-face row
   // (edges and face values) for the blocked faces of thin bodies.
@@ -759,6 +839,14 @@ class Solver final : public FluidSimulation {
     if constexpr (NP == 2) {
       if constexpr (ASSIGN) std::fill(R_.var(Lay::alpha) + rbase + f0, R_.var(Lay::alpha) + rbase + f1, 0.0);
       apply_lagrangian<D>(buf + fvar_lag_right * flen, flen, rbase, f0, f1, inv_dx);
+      if (gran_) {
+        double* r = R_.var(Lay::heat) + rbase;
+        const double* F = buf + fvar_heat * flen;
+        if constexpr (ASSIGN)
+          for (int f = f0; f < f1; ++f) r[f] = inv_dx * F[f];
+        else
+          for (int f = f0; f < f1; ++f) r[f] += inv_dx * F[f];
+      }
     }
   }
   // Faces f in [f0, f1) subtract F and add Lag_left to cell lbase + f.
@@ -770,7 +858,14 @@ class Solver final : public FluidSimulation {
         const double* F = buf + fvar_flux(k, q) * flen;
         for (int f = f0; f < f1; ++f) r[f] -= inv_dx * F[f];
       }
-    if constexpr (NP == 2) apply_lagrangian<D>(buf + fvar_lag_left * flen, flen, lbase, f0, f1, inv_dx);
+    if constexpr (NP == 2) {
+      apply_lagrangian<D>(buf + fvar_lag_left * flen, flen, lbase, f0, f1, inv_dx);
+      if (gran_) {
+        double* r = R_.var(Lay::heat) + lbase;
+        const double* F = buf + fvar_heat * flen;
+        for (int f = f0; f < f1; ++f) r[f] -= inv_dx * F[f];
+      }
+    }
   }
   // Phase 0 gets +Lag, phase 1 gets -Lag (its [X_k] is opposite); momentum along the face normal.
   template <int D>
@@ -815,7 +910,7 @@ class Solver final : public FluidSimulation {
   template <int D, ReconMode RM>
   void compute_edges(std::size_t first, int count, double* edges) const {
     const std::size_t s = static_cast<std::size_t>(g_.stride[D]), len = edge_row_len();
-    for (int v = 0; v < Lay::kPrim; ++v) {
+    for (int v = 0; v < nprim_; ++v) {
       if (is_sound_var(v)) continue;  // from rho and p below
       const double* w = W_.var(v) + first;
       double* lo = edges + v * len;
@@ -885,7 +980,10 @@ class Solver final : public FluidSimulation {
         }
         for (int q = 0; q < 2 + DIM; ++q) fv[q] = buf + fvar_flux(k, q) * flen;
         if (trace_[k] > 1.0) {  // a dispersed phase: the trace flux everywhere
-          trace_row<DIM, D>(len, lv, rv, fv, eos_[k]);
+          if (gran_)
+            trace_row<DIM, D, true>(len, lv, rv, fv, eos_[k], left_edges + (Lay::kPrim + Lay::pgran) * elen + left_off,
+                                    right_edges + Lay::pgran * elen + right_off, buf + fvar_heat * flen);
+          else trace_row<DIM, D>(len, lv, rv, fv, eos_[k]);
           continue;
         }
         if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
@@ -905,6 +1003,11 @@ class Solver final : public FluidSimulation {
             f1[f] *= std::min(1.0 - al[f], 1.0 - ar[f]);
           }
         }
+        if (gran_) {
+          double* fh = buf + fvar_heat * flen;
+#pragma GCC ivdep
+          for (int f = 0; f < len; ++f) fh[f] *= std::min(1.0 - al[f], 1.0 - ar[f]);
+        }
         std::fill_n(buf + fvar_lag_left * flen, 6 * flen, 0.0);
         // Cross contacts (and second-order intra-cell contacts) only where the volume fraction varies.
         for (int f = 0; f < len; ++f) {
@@ -922,6 +1025,10 @@ class Solver final : public FluidSimulation {
             buf[fvar_flux(k, 0) * flen + f] += res.flux[k].mass;
             for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] += res.flux[k].mom[d];
             buf[fvar_flux(k, 1 + DIM) * flen + f] += res.flux[k].energy;
+          }
+          if (gran_) {  // the dispersed material crossing with a cross contact carries its material energy
+            const PhaseState<DIM>& p1 = S01 > 0.0 ? R[1] : L[1];
+            buf[fvar_heat * flen + f] += res.flux[1].mass * eos_[1].rho_e(p1.rho, p1.p) / p1.rho;
           }
           store_lagrangian(buf, flen, f, res.to_left,
                            add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
@@ -967,14 +1074,18 @@ class Solver final : public FluidSimulation {
                            double* buf, std::size_t flen) const {
     if constexpr (NP == 2) {
       if (!scene_.exchange.dispersed) return;
-      if (scene_.exchange.particle_stress.beta == 3.0)
-        particle_stress_row<D, 3>(len, left_edges, left_off, right_edges, right_off, buf, flen);
-      else particle_stress_row<D, 0>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      const bool b3 = scene_.exchange.particle_stress.beta == 3.0;
+      if (gran_ && b3) particle_stress_row<D, 3, true>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      else if (gran_) particle_stress_row<D, 0, true>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      else if (b3) particle_stress_row<D, 3, false>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+      else particle_stress_row<D, 0, false>(len, left_edges, left_off, right_edges, right_off, buf, flen);
     } else {
       (void)len, (void)left_edges, (void)left_off, (void)right_edges, (void)right_off, (void)buf, (void)flen;
     }
   }
-  template <int D, int B>
+  // GRAN: the granular pressure joins the stress, the granular gas's sound its wave speed, and the material
+  // energy gets the same dissipation (docs/methods.md §2.9).
+  template <int D, int B, bool GRAN>
   void particle_stress_row(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                            double* buf, std::size_t flen) const {
     const ParticleStress& ps = scene_.exchange.particle_stress;
@@ -995,13 +1106,34 @@ class Solver final : public FluidSimulation {
     }
     double* fm = buf + fvar_flux(1, 0) * flen;
     double* fe = buf + fvar_flux(1, 1 + DIM) * flen;
+    const GranularGas& gr = scene_.exchange.granular;
+    const double *gL = nullptr, *gR = nullptr;
+    double* fh = nullptr;
+    if constexpr (GRAN) {
+      gL = lv(Lay::pgran);
+      gR = rv(Lay::pgran);
+      fh = buf + fvar_heat * flen;
+    }
 #pragma GCC ivdep
     for (int f = 0; f < len; ++f) {
       const double aL = 1.0 - al[f], aR = 1.0 - ar[f];
       double piL, dL, piR, dR;
       ps.eval<B>(aL, piL, dL);
       ps.eval<B>(aR, piR, dR);
-      const double cf = std::sqrt(std::max(dL / rL[f], dR / rR[f]));
+      double cf = std::sqrt(std::max(dL / rL[f], dR / rR[f]));
+      double gEL = 0.0, gER = 0.0;  // granular energy per volume of the two edges
+      if constexpr (GRAN) {
+        double pgL, cgL, pgR, cgR;
+        gr.pressure_and_speed(aL, rL[f], gL[f], pgL, cgL);
+        gr.pressure_and_speed(aR, rR[f], gR[f], pgR, cgR);
+        piL += pgL;
+        piR += pgR;
+        cf = std::max(cf, std::max(cgL, cgR));
+        gEL = aL * rL[f] * gL[f];
+        gER = aR * rR[f] * gR[f];
+      } else {
+        (void)gr, (void)gL, (void)gR, (void)fh;
+      }
       const double mL = aL * rL[f], mR = aR * rR[f];
       double kL = 0, kR = 0;
       for (int d = 0; d < DIM; ++d) {
@@ -1011,9 +1143,10 @@ class Solver final : public FluidSimulation {
       }
       fmom[D][f] += 0.5 * (piL + piR);
       fm[f] -= 0.5 * cf * (mR - mL);
-      const double EL = aL * ((pL[f] + gpinf) * ig1 + rL[f] * q + 0.5 * rL[f] * kL);
-      const double ER = aR * ((pR[f] + gpinf) * ig1 + rR[f] * q + 0.5 * rR[f] * kR);
+      const double hL = aL * ((pL[f] + gpinf) * ig1 + rL[f] * q), hR = aR * ((pR[f] + gpinf) * ig1 + rR[f] * q);
+      const double EL = hL + aL * 0.5 * rL[f] * kL + gEL, ER = hR + aR * 0.5 * rR[f] * kR + gER;
       fe[f] += 0.5 * (piL * uL[D][f] + piR * uR[D][f]) - 0.5 * cf * (ER - EL);
+      if constexpr (GRAN) fh[f] -= 0.5 * cf * (hR - hL);
     }
   }
 
@@ -1085,6 +1218,10 @@ class Solver final : public FluidSimulation {
   bool wall_second_order_ = true;
   // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.
   std::array<double, NP> trace_{};
+  // A dispersed phase with a granular temperature (docs/methods.md §2.9): the last conservative slot holds its
+  // material energy, the last primitive slot its granular energy per unit mass; ncons_ / nprim_ variables in use.
+  const bool gran_;
+  const int ncons_, nprim_;
 };
 
 }  // namespace cosim::fluid

@@ -31,10 +31,13 @@ inline PhaseFlux<DIM> trace_flux(const PhaseState<DIM>& L, const PhaseState<DIM>
 }
 
 // The same flux over a row of faces, branch-free so that the loop vectorises; the views are those of aufs_row
-// (left[v][f], v = rho, u_0..u_{DIM-1}, p, c).
-template <int DIM, int D>
+// (left[v][f], v = rho, u_0..u_{DIM-1}, p, c). GRAN: a phase with a granular temperature (docs/methods.md §2.9),
+// whose granular energy per unit mass kl / kr is carried in its energy, and whose material energy rho e is carried
+// the same way into fh (so that E - e - u^2/2 keeps what the flux takes from the mean motion).
+template <int DIM, int D, bool GRAN = false>
 inline void trace_row(int n, const double* const* left, const double* const* right, double* const* flux,
-                      const eos::StiffenedGas& e) {
+                      const eos::StiffenedGas& e, const double* kl = nullptr, const double* kr = nullptr,
+                      double* fh = nullptr) {
   const double ig1 = 1.0 / (e.gamma - 1.0), gpinf = e.gamma * e.pinf, q = e.q;
 #pragma GCC ivdep
   for (int f = 0; f < n; ++f) {
@@ -47,8 +50,14 @@ inline void trace_row(int n, const double* const* left, const double* const* rig
       kL += left[1 + d][f] * left[1 + d][f];
       kR += right[1 + d][f] * right[1 + d][f];
     }
-    const double EL = (pL + gpinf) * ig1 + rL * q + 0.5 * rL * kL, ER = (pR + gpinf) * ig1 + rR * q + 0.5 * rR * kR;
+    const double eL = (pL + gpinf) * ig1 + rL * q, eR = (pR + gpinf) * ig1 + rR * q;
+    double EL = eL + 0.5 * rL * kL, ER = eR + 0.5 * rR * kR;
     const double a = wl * uf + s, b = wr * uf - s;  // F = U- a + U+ b + pressure terms
+    if constexpr (GRAN) {
+      EL += rL * kl[f];
+      ER += rR * kr[f];
+      fh[f] = eL * a + eR * b;
+    }
     flux[0][f] = rL * a + rR * b;
     for (int d = 0; d < DIM; ++d) flux[1 + d][f] = rL * left[1 + d][f] * a + rR * right[1 + d][f] * b;
     flux[1 + D][f] += 0.5 * (pL + pR);

@@ -38,6 +38,7 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   const int np = sim.scene().num_phases();
   const bool dispersed = sim.scene().exchange.dispersed;
   const ParticleStress& stress = sim.scene().exchange.particle_stress;
+  const GranularGas& granular = sim.scene().exchange.granular;
   coupling::FluidSamples out;
   out.count = faces.count;
   out.phases = np;
@@ -54,7 +55,7 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   // Per phase at point x: alpha, rho, u . n, p, c from the flow cells of the stencil; false when they carry
   // less than min_flow_weight of it.
   struct Values {
-    double a, rho, un, p, c;
+    double a, rho, un, p, c, k;
   };
   std::vector<Values> vals(static_cast<std::size_t>(np)), far(static_cast<std::size_t>(np));
   const auto evaluate = [&](const std::array<double, 3>& x, const std::array<double, 3>& n, std::vector<Values>& v) {
@@ -81,7 +82,7 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
     if (flow < opt.min_flow_weight) return false;
     sim.cell_states(cells.data(), NS, states.data());
     for (int k = 0; k < np; ++k) {
-      Values s{0, 0, 0, 0, 0};
+      Values s{0, 0, 0, 0, 0, 0};
       for (int q = 0; q < NS; ++q) {
         if (w[q] == 0) continue;
         const CellSample& cs = states[static_cast<std::size_t>(q) * np + k];
@@ -90,6 +91,7 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
         s.rho += wq * cs.rho;
         s.p += wq * cs.p;
         s.c += wq * cs.c;
+        s.k += wq * cs.granular;
         for (int d = 0; d < DIM; ++d) s.un += wq * cs.velocity[d] * n[d];
       }
       v[static_cast<std::size_t>(k)] = s;
@@ -135,9 +137,13 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
         out.normal_velocity[i] = v.un;
         out.pressure[i] = p;
         out.impedance[i] = v.rho * v.c;
-        if (k == 1 && dispersed) {  // its collision stress loads the wall too; its waves are compaction waves (§2.8)
-          out.pressure[i] += stress.stress(v.a) / std::max(v.a, 1e-300);
-          out.impedance[i] = v.rho * stress.wave_speed(v.a, v.rho);
+        if (k == 1 && dispersed) {
+          // Its collision stress and granular pressure load the wall too; its waves are compaction waves and the
+          // sound of its granular gas (§2.8-2.9).
+          double pg = 0, cg = 0;
+          if (granular.enabled) granular.pressure_and_speed(v.a, v.rho, v.k, pg, cg);
+          out.pressure[i] += (stress.stress(v.a) + pg) / std::max(v.a, 1e-300);
+          out.impedance[i] = v.rho * std::max(stress.wave_speed(v.a, v.rho), cg);
         }
       }
       out.wetted[f] = 1;

@@ -23,6 +23,7 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, cons
     views.push_back({n + "_velocity", ph[k].velocity.data(), 3, io::Center::Cell});
     views.push_back({n + "_pressure", ph[k].p.data(), 1, io::Center::Cell});
     views.push_back({n + "_temperature", ph[k].T.data(), 1, io::Center::Cell});
+    if (!ph[k].theta.empty()) views.push_back({n + "_granular_temperature", ph[k].theta.data(), 1, io::Center::Cell});
   }
   std::vector<double> mrho, mvel, mp;
   if (np > 1) {

@@ -15,7 +15,7 @@ double kinetic_per_mass(const CellState2& s, int k, int dim) {
 }
 }  // namespace
 
-void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {
+double apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {
   (void)eos;
   const double mg = s.m[0], mp = s.m[1], M = mg + mp;
   double du[3] = {0, 0, 0}, slip2 = 0;
@@ -23,7 +23,7 @@ void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange
     du[d] = s.mom[0][d] / mg - s.mom[1][d] / mp;
     slip2 += du[d] * du[d];
   }
-  if (slip2 == 0.0) return;
+  if (slip2 == 0.0) return 0.0;
   const double alpha_g = s.alpha0, alpha_p = 1.0 - s.alpha0;
   const double beta =
       drag_beta(ex.drag_law, alpha_p, mg / alpha_g, std::sqrt(slip2), ex.particle_diameter, ex.gas_viscosity);
@@ -38,6 +38,7 @@ void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange
   const double dke_p = kinetic_per_mass(s, 1, dim) * mp - ke_p_old;
   s.E[1] += dke_p;
   s.E[0] -= dke_p;
+  return beta;
 }
 
 void apply_heat_transfer(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt) {

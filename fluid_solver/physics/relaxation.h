@@ -62,7 +62,8 @@ struct CellState2 {
 // Drag over dt with the coefficient frozen at its start value: the slip decays exactly as
 // exp(-dt beta (1/m_g + 1/m_p)). Phase 0 is the gas, phase 1 the particles. The particles' kinetic
 // energy change is taken from the gas energy, so the dissipation heats the gas (docs/methods.md §6.1).
-void apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt);
+// Returns the drag coefficient beta [kg/(m^3 s)] it used (0 without slip).
+double apply_drag(CellState2& s, const eos::StiffenedGas (&eos)[2], const Exchange& ex, int dim, double dt);
 
 // Heat exchange (Ranz-Marshall) over dt at frozen densities and coefficient: T_g - T_p decays
 // exponentially; the heat leaves the gas and enters the particles.

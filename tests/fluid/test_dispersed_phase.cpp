@@ -6,6 +6,8 @@
 // comes back, each phase's mass and the total energy conserved, at a step set by the air.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "fluid_solver/core/scene.h"
@@ -94,6 +96,46 @@ TEST(DispersedPhase, WithoutTheCollisionStressTheSlabOverpacks) {
   } catch (const std::exception&) { max_alpha = 1.0; }  // or it breaks down
   std::printf("peak alpha without the stress: %.3f\n", max_alpha);
   EXPECT_GT(max_alpha, 0.7);
+}
+
+// A dilute cloud (0.01% tungsten) thrown at a wall: the particles bounce off it. The kinetic energy of their normal
+// motion becomes granular energy at the wall, whose pressure sends them back (docs/methods.md §2.9); without the
+// granular temperature the single-velocity cloud stops at the wall and stays there. A denser cloud (0.2%) meets
+// itself at the wall often enough that its inelastic collisions (restitution 0.9) take most of that energy: it
+// comes back far slower, and with elastic collisions it comes back fast.
+TEST(DispersedPhase, DiluteCloudBouncesOffAWall) {
+  struct Result {
+    double u_arrival = 0, u_end = 0, energy = 0;
+  };
+  const auto run = [](double alpha, const std::vector<std::string>& extra) {
+    std::vector<std::string> sets = {fmt::format("fluid.initial.regions.0.state.alpha=[{}, {}]", 1 - alpha, alpha)};
+    sets.insert(sets.end(), extra.begin(), extra.end());
+    FluidScene s = parse_fluid_scene(kSlab, sets);
+    auto sim = make_simulation(s);
+    const std::vector<PhaseTotals> t0 = sim->totals();
+    Result r;
+    while (sim->time() < s.t_end * (1 - 1e-12)) {
+      sim->advance(std::min(sim->stable_dt(), s.t_end - sim->time()));
+      if (sim->time() < 0.45e-3) r.u_arrival = mean_velocity(sim->phase_fields(1));
+    }
+    r.u_end = mean_velocity(sim->phase_fields(1));
+    const std::vector<PhaseTotals> t1 = sim->totals();
+    r.energy = (t1[0].energy + t1[1].energy) / (t0[0].energy + t0[1].energy) - 1.0;
+    return r;
+  };
+  const Result dilute = run(1e-4, {}), cold = run(1e-4, {"fluid.exchange.granular_temperature=false"});
+  const Result dense = run(2e-3, {}), elastic = run(2e-3, {"fluid.exchange.restitution=1"});
+  std::printf(
+      "mean particle velocity before the wall / at the end [m/s]: 0.01%% cloud %.1f / %.1f (%.1f without granular "
+      "temperature); 0.2%% cloud %.1f (%.1f with elastic collisions); energy change %.1e\n",
+      dilute.u_arrival, dilute.u_end, cold.u_end, dense.u_end, elastic.u_end, dilute.energy);
+  EXPECT_GT(dilute.u_arrival, 360.0);                // (it gathers the resting trace of particles on its way)
+  EXPECT_LT(dilute.u_end, -0.4 * dilute.u_arrival);  // it bounced
+  EXPECT_GT(cold.u_end, -0.05 * dilute.u_arrival);   // it stuck
+  EXPECT_GT(dense.u_end, 0.25 * dilute.u_end);       // collisions took most of the rebound
+  EXPECT_LT(elastic.u_end, -0.4 * dilute.u_arrival);
+  EXPECT_LT(std::abs(dilute.energy), 1e-12);
+  EXPECT_LT(std::abs(dense.energy), 1e-12);
 }
 
 TEST(DispersedPhase, SceneKeysAreChecked) {
