@@ -149,6 +149,12 @@ TEST(DispersedPhase, SceneKeysAreChecked) {
   EXPECT_NE(error({"fluid.exchange.dispersed=false", "fluid.exchange.particle_stress.p_s=1"}).find("dispersed"),
             std::string::npos);
   EXPECT_NE(error({"fluid.exchange.particle_stress.packing=0.9"}).find("packing"), std::string::npos);
+  EXPECT_NE(error({"fluid.exchange.granular_temperature=false", "fluid.exchange.restitution=0.5"}).find("restitution"),
+            std::string::npos);
+  EXPECT_NE(error({"fluid.exchange.restitution=1.5"}).find("restitution"), std::string::npos);
+  EXPECT_NE(error({"fluid.numerics.flux=hllc"}).find("aufs"), std::string::npos);
+  EXPECT_NE(error({"fluid.exchange.dispersed=false", "fluid.exchange.granular_temperature=true"}).find("dispersed"),
+            std::string::npos);
 }
 
 }  // namespace
