@@ -1,5 +1,8 @@
 #include "fluid_solver/core/scene.h"
 
+#include "common/util/memory.h"
+#include "fluid_solver/core/memory_estimate.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -319,6 +322,18 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
 
   s.threads = f.get<int>("threads", 0, config::int_at_least(0));
   f.finish();
+
+  // Refused before anything is allocated: a state that cannot fit in the memory the machine has.
+  const double need = static_cast<double>(estimated_state_bytes(s));
+  const std::size_t have = util::available_memory_bytes();
+  if (have > 0 && need > 0.9 * static_cast<double>(have)) {
+    double n = 1;
+    for (int d = 0; d < s.dim; ++d) n *= s.cells[d];
+    mesh.fail("cells",
+              fmt::format("a mesh whose state fits in memory: {:.4g} cells need about {} ({:.0f} bytes per "
+                          "cell), this machine has {} available",
+                          n, util::format_bytes(need), need / n, util::format_bytes(static_cast<double>(have))));
+  }
   return s;
 }
 

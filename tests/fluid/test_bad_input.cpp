@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fluid_solver/core/memory_estimate.h"
 #include "fluid_solver/core/scene.h"
 #include "fluid_solver/core/simulation.h"
 #include "tests/support/scratch_dir.h"
@@ -201,6 +202,34 @@ TEST(SceneValidation, AbsurdAndNonFiniteNumbersAreRefusedAtLoad) {
     EXPECT_NE(e.find("fluid.initial.state.rho"), std::string::npos) << bad << ": " << e;
   }
   EXPECT_EQ(error_of(replace(kGood, "velocity: [0.0]", "velocity: [3.0e4]")), "");  // fast, but physical
+}
+
+// A mesh whose state cannot fit in the machine's memory is refused when the scene is read, before anything is
+// allocated, naming the key, the memory it needs and what the machine has; the estimate is the solver's own
+// allocation (within the row buffers, a few percent at a small size).
+TEST(SceneValidation, AMeshTooLargeForTheMachineIsRefusedBeforeAnythingIsAllocated) {
+  const std::string big =
+      error_of(replace(replace(replace(kGood, "cells: [50]", "cells: [100000, 100000, 100000]"),
+                               "lower: [0.0], upper: [1.0]", "lower: [0.0, 0.0, 0.0], upper: [1.0, 1.0, 1.0]"),
+                       "velocity: [0.0]", "velocity: [0.0, 0.0, 0.0]"));
+  EXPECT_NE(big.find("fluid.mesh.cells"), std::string::npos) << big;
+  EXPECT_NE(big.find("1e+15 cells need about"), std::string::npos) << big;
+  EXPECT_NE(big.find("available"), std::string::npos) << big;
+
+  const FluidScene s = parse_fluid_scene(R"(
+fluid:
+  mesh: {cells: [24, 20, 16], lower: [0, 0, 0], upper: [1, 1, 1]}
+  phases: [{name: air, material: air}, {name: tungsten, material: tungsten}]
+  exchange: {velocity_relaxation: none, dispersed: true}
+  time: {end: 1.0e-3}
+  initial:
+    state: {p: 1.0e5, T: 300, velocity: [0.0, 0.0, 0.0], alpha: [0.99, 0.01]}
+)");
+  const double estimate = static_cast<double>(estimated_state_bytes(s));
+  const double actual = static_cast<double>(make_simulation(s)->state_bytes());
+  std::printf("state of a 24 x 20 x 16 dispersed scene: estimated %.0f bytes, allocated %.0f\n", estimate, actual);
+  EXPECT_GT(estimate, 0.85 * actual);
+  EXPECT_LE(estimate, actual);
 }
 
 }  // namespace
