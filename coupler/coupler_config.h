@@ -27,6 +27,7 @@ struct CouplerConfig {
   double timeout = 3.0;
   double heartbeat_interval = 0.5;
   double connect_timeout = 30.0;
+  double step_timeout = 0.0;       // 0: automatic (HubOptions)
   bool pressure_predictor = true;  // predictor: linear
 };
 

@@ -173,11 +173,23 @@ void Hub::beat_and_check() {
   }
 }
 
-Hub::Incoming Hub::next_data(const std::string&) {
+double Hub::step_limit(Role r) const {
+  if (opt_.step_timeout > 0) return opt_.step_timeout;
+  return std::max(kAutoStepFloor, kAutoStepFactor * peer(r).longest_answer);
+}
+
+Hub::Incoming Hub::next_data(const std::string& waiting_for, Role from, double since) {
   Incoming in;
   for (;;) {
     if (app::interrupted()) throw coupling::CouplingError("coupler interrupted (SIGINT/SIGTERM)");
     beat_and_check();
+    // A peer that heartbeats but does not answer (a hung solver loop) is stopped too, naming what it owes.
+    const double waited = now_s() - since, limit = step_limit(from);
+    if (waited > limit)
+      throw PeerLost(fmt::format(
+          "{} sends heartbeats but has not sent {} for {:.1f} s (coupling.step_timeout {})", peer(from).describe(from),
+          waiting_for, waited,
+          opt_.step_timeout > 0 ? fmt::format("{:g} s", opt_.step_timeout) : fmt::format("automatic: {:g} s", limit)));
     const int ms = static_cast<int>(std::clamp((next_beat_ - now_s()) * 1e3, 1.0, 50.0));
     if (poll_once(ms, in)) return in;
   }
@@ -223,9 +235,14 @@ pb::Envelope Hub::next_from(Role from, const std::string& waiting_for) {
     mine.pop_front();
     return e;
   }
+  const double since = now_s();
   for (;;) {
-    Incoming in = next_data(waiting_for);
-    if (in.from == from) return std::move(in.e);
+    Incoming in = next_data(waiting_for, from, since);
+    if (in.from == from) {
+      Peer& p = peer(from);
+      p.longest_answer = std::max(p.longest_answer, now_s() - since);
+      return std::move(in.e);
+    }
     auto& other = inbox_[index(in.from)];
     if (other.size() >= kMaxAhead)
       fail_peer(in.from,

@@ -24,7 +24,11 @@ struct HubOptions {
   double timeout = 5.0;             // [s]
   double heartbeat_interval = 0.5;  // [s]
   double connect_timeout = 30.0;    // [s]
+  // [s] the longest a peer may take to answer, heartbeats or not; 0: automatic, kAutoStepFactor times the
+  // longest answer it has given so far, at least kAutoStepFloor.
+  double step_timeout = 0.0;
 };
+inline constexpr double kAutoStepFactor = 50.0, kAutoStepFloor = 120.0;
 
 struct Peer {
   bool connected = false;
@@ -34,6 +38,7 @@ struct Peer {
   std::vector<std::string> phase_names;
   double last_seen = 0;                          // steady clock [s]
   double busy = 0;                               // sum of Header.busy_seconds received [s]
+  double longest_answer = 0;                     // the longest wait for one of its data messages [s]
   coupling::pb::Envelope hello, welcome;         // kept for the transcript
   std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"
 };
@@ -72,7 +77,9 @@ class Hub {
     coupling::pb::Envelope e;
   };
   // Blocks until a data message from a connected peer arrives (heartbeats and strangers handled inside).
-  Incoming next_data(const std::string& waiting_for);
+  // Throws PeerLost when the peer `from`, waited for since `since`, has not answered within the step timeout.
+  Incoming next_data(const std::string& waiting_for, coupling::Role from, double since);
+  double step_limit(coupling::Role r) const;
   // The next message of one peer: its inbox first, else from the socket, queueing the other peer's.
   coupling::pb::Envelope next_from(coupling::Role from, const std::string& waiting_for);
   bool poll_once(int timeout_ms, Incoming& out);

@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
   ho.timeout = cfg.timeout;
   ho.heartbeat_interval = cfg.heartbeat_interval;
   ho.connect_timeout = cfg.connect_timeout;
+  ho.step_timeout = cfg.step_timeout;
   try {
     coupler::Transcript tr(transcript);
     coupler::Hub hub(ho, transcript.empty() ? nullptr : &tr);

@@ -3,19 +3,22 @@
 //   cosim_scripted_peer --role fluid|solid --endpoint EP [--token T] [--scene FILE] [--set k=v ...]
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
-//                       [--extra-proposals N]
+//                       [--extra-proposals N] [--hang-after N]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
 //        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle, and with
 //        --extra-proposals N sends N more DtProposals right after its faces (a misbehaving peer).
+// --hang-after N: after N cycles it stops answering but keeps its heartbeats (a hung solver loop).
 // Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr).
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <thread>
 
 #include "common/coupling/client.h"
 #include "common/coupling/scene_hash.h"
@@ -47,6 +50,8 @@ int main(int argc, char** argv) {
   app.add_option("--pressure-gradient", gradient, "fluid: p = pressure + gradient * x_face [Pa/m]");
   int extra_proposals = 0;
   app.add_option("--extra-proposals", extra_proposals, "solid: DtProposals sent ahead of the cycle after its faces");
+  long hang_after = -1;
+  app.add_option("--hang-after", hang_after, "cycles after which it stops answering (heartbeats go on)");
   CLI11_PARSE(app, argc, argv);
   const std::string tag = "[scripted-" + role + "] ";
   try {
@@ -63,7 +68,9 @@ int main(int argc, char** argv) {
     Client c(o);
     std::cerr << tag << "connected to " << endpoint << "\n";
     double x = 0.0;
-    for (;;) {
+    for (long cycle = 0;; ++cycle) {
+      if (cycle == hang_after)
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // until a signal ends it
       const Directive d = c.next();
       if (d.kind == Directive::Kind::Stop) {
         std::cerr << tag << "stop: " << d.reason << "\n";

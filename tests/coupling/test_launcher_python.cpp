@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -71,6 +72,27 @@ TEST(CouplingLauncher, FailingProcessIsNamedAndNothingIsLeftRunning) {
   EXPECT_NE(log.find("failed with exit code"), std::string::npos) << log;
   EXPECT_NE(log.find("protocol version 7"), std::string::npos) << log;  // the last log lines are shown
   EXPECT_NE(read_file(run / "launch.json").find("tcp://127.0.0.1:"), std::string::npos);
+  EXPECT_FALSE(process_with_argument(run.string()));
+}
+
+// A solver that keeps heartbeating but stops answering (a hung step) is stopped at the step timeout, named with
+// the message it owes, and nothing is left running; the cause is in run_summary.json.
+TEST(CouplingLauncher, APeerThatHeartbeatsButNeverAnswersIsStoppedAtTheStepTimeout) {
+  const fs::path dir = test_dir("hung_peer");
+  const fs::path scene = write_scene(dir, "  time: {end: 1.0e9}\n  step_timeout: 1.5\n");
+  const fs::path run = dir / "run";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc =
+      run_cosim(scene.string() + " --out " + run.string() + " " + fluid_exe("--hang-after 5") + " " + piston_exe(),
+                dir / "cosim.log");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string log = read_file(dir / "cosim.log"), summary = read_file(run / "run_summary.json");
+  std::printf("hung fluid: cosim exit %d after %.1f s\n", rc, wall);
+  EXPECT_NE(rc, 0);
+  EXPECT_NE(log.find("sends heartbeats but has not sent"), std::string::npos) << log;
+  EXPECT_NE(log.find("coupling.step_timeout 1.5 s"), std::string::npos) << log;
+  EXPECT_NE(summary.find("has not sent"), std::string::npos) << summary;
+  EXPECT_LT(wall, 15.0);  // the timeout and a clean stop, not the heartbeat's silence (there is none)
   EXPECT_FALSE(process_with_argument(run.string()));
 }
 
