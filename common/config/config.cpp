@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -253,10 +254,32 @@ std::vector<Node> Node::elements() const {
 
 std::string Node::typo_of_missing(const std::string& key) const {
   if (!node_.IsMap()) return "";
-  std::set<std::string> present;
-  for (auto it = node_.begin(); it != node_.end(); ++it) present.insert(it->first.as<std::string>());
-  const std::string best = closest(key, present);
-  return best.empty() ? "" : fmt::format("; the section has '{}': a typo of '{}'?", best, key);
+  // A key already asked for is valid, not a typo. A missing key is matched more strictly than an unknown one: a
+  // short key (end, rho) is a few edits from most other short keys.
+  const auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  const std::size_t allowed = key.size() >= 4 ? 2 : key.size() >= 2 ? 1 : 0;
+  std::size_t best_d = allowed + 1;
+  std::string given;
+  YAML::Mark mark = YAML::Mark::null_mark();
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (!it->first.IsScalar()) continue;
+    const std::string k = it->first.Scalar();
+    if (k == key || used_.count(k)) continue;
+    const std::size_t d = lower(k) == lower(key) ? 0 : edit_distance(key, k);
+    if (d < best_d) {
+      best_d = d;
+      given = k;
+      mark = it->first.Mark();
+    }
+  }
+  if (given.empty()) return "";
+  if (ctx_->overridden.count(key_path(given)))
+    return fmt::format(" (did you mean '{}', given with --set {}?)", given, key_path(given));
+  if (mark.is_null()) return fmt::format(" (did you mean '{}'?)", given);
+  return fmt::format(" (did you mean '{}', given at line {}?)", given, mark.line + 1);
 }
 
 void Node::finish() const {

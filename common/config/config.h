@@ -82,7 +82,8 @@ class Node {
 
   // "file:line: path" prefix for messages about this node or one of its keys.
   std::string where(const std::string& key = "") const;
-  // For a missing key: "; the section has 'cell': a typo of 'cells'?" when a key it does have is close, else "".
+  // For a missing key: " (did you mean 'cell', given at line 7?)" when the section has a key that is not otherwise
+  // valid and a typo away from it, else "".
   std::string typo_of_missing(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
 

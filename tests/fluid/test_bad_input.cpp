@@ -80,12 +80,12 @@ TEST(SceneValidation, TypoSuggestsClosestKey) {
 // A required key that is missing while the section has a key close to it: the typo is named.
 TEST(SceneValidation, MissingKeyNamesTheTypoThatTookItsPlace) {
   const std::string e = error_of(replace(kGood, "cells: [50]", "cell: [50]"));
-  EXPECT_NE(e.find("<scene>:3: fluid.mesh.cells: expected a list of 1 to 3 numbers, but the key is missing; the "
-                   "section has 'cell': a typo of 'cells'?"),
+  EXPECT_NE(e.find("<scene>:3: fluid.mesh.cells: expected a list of 1 to 3 numbers, but the key is missing (did "
+                   "you mean 'cell', given at line 3?)"),
             std::string::npos)
       << e;
   const std::string e2 = error_of(replace(kGood, "  time: {end: 0.01, cfl: 0.4}", "  tiem: {end: 0.01, cfl: 0.4}"));
-  EXPECT_NE(e2.find("fluid.time: expected a section, but the key is missing; the section has 'tiem'"),
+  EXPECT_NE(e2.find("fluid.time: expected a section, but the key is missing (did you mean 'tiem', given at line 5?)"),
             std::string::npos)
       << e2;
 }
