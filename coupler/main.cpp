@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
   app.add_option("--transcript", transcript, "write every message in protobuf text form to FILE");
   app.add_flag("--quiet", quiet, "only warnings and errors");
   app.set_version_flag("--version", cosim::app::version_line("coupler"));
+  app.footer(
+      "Examples:\n"
+      "  cosim run configs/piston_2d.yaml      the usual way: cosim starts the coupler and both solvers\n"
+      "  coupler configs/piston_2d.yaml --endpoint ipc:///tmp/piston.sock --token T --out runs/piston/coupler\n"
+      "      then: fluid_solver|solid_solver configs/piston_2d.yaml --out DIR --coupler ipc:///tmp/piston.sock "
+      "--token T");
   if (const std::string unknown = cosim::app::unknown_option(app, argc, argv); !unknown.empty()) {
     std::cerr << "coupler: " << unknown << "\nRun with --help for more information.\n";
     return 2;

@@ -7,7 +7,11 @@ int main(int argc, char** argv) {
   cosim::app::prefer_passive_waiting(argv);
   cosim::app::RunOptions opt;
   if (auto rc = cosim::app::parse_command_line(
-          argc, argv, "fluid_solver", "multiphase DEM Godunov solver on a Cartesian mesh (standalone run)", opt))
+          argc, argv, "fluid_solver", "multiphase DEM Godunov solver on a Cartesian mesh (standalone run)",
+          "  fluid_solver configs/sod.yaml --out runs/sod             snapshots and summary.json in runs/sod\n"
+          "  fluid_solver configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]' --threads 1\n"
+          "  cosim run configs/sod.yaml                               the same run through the launcher",
+          opt))
     return *rc;
   return cosim::fluid::run_fluid(opt);
 }

@@ -5,6 +5,7 @@
 #include <unistd.h>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "common/app/cli_suggest.h"
 #include "common/app/version.h"
@@ -30,13 +31,35 @@ int main(int argc, char** argv) {
   run->add_option("--progress-every", o.progress_every,
                   "seconds between progress lines when stderr is not a terminal (a log), default 30")
       ->check(CLI::PositiveNumber);
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string unknown = cosim::app::unknown_subcommand(app, argv[1]);
+  app.footer(
+      "Examples:\n"
+      "  cosim run configs/piston_2d.yaml                  coupled run into runs/<scene name>\n"
+      "  cosim run configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]'\n"
+      "  cosim run --help                                  the options of a run");
+  run->footer(
+      "Examples:\n"
+      "  cosim run configs/shock_panel_2d.yaml             fluid, solid and coupler; results in "
+      "runs/shock_panel_2d\n"
+      "  cosim run configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]'\n"
+      "  cosim run configs/piston_2d.yaml --set coupling.time.end=1e-3 --quiet\n"
+      "  cosim run configs/piston_2d.yaml --tcp             over tcp://127.0.0.1 (processes on one host)");
+  // The word the user typed is named, before CLI11's "A subcommand is required" or "--out is required".
+  std::string unknown;
+  if (argc == 1) {
+    unknown = "a command is required: cosim run SCENE.yaml [options] (cosim --help for more)";
+  } else if (argv[1][0] != '-') {
+    unknown = cosim::app::unknown_subcommand(app, argv[1]);
     if (unknown.empty()) unknown = cosim::app::unknown_option(*run, argc, argv, 2);
-    if (!unknown.empty()) {
-      std::cerr << "cosim: " << unknown << "\nRun with --help for more information.\n";
-      return 2;
-    }
+  } else if (const std::string w = std::string(argv[1]).substr(0, std::string(argv[1]).find('='));
+             w != "--version" && w != "--help" && w != "-h") {
+    // an option before the command (cosim has none but --help and --version): named with run's closest
+    const std::string of_run = cosim::app::unknown_option(*run, 2, argv, 1);
+    unknown = of_run.empty() ? "'" + w + "' is an option of 'run': cosim run SCENE.yaml " + w + " ..."
+                             : of_run + "; options follow the command: cosim run SCENE.yaml [options]";
+  }
+  if (!unknown.empty()) {
+    std::cerr << "cosim: " << unknown << "\nRun with --help for more information.\n";
+    return 2;
   }
   try {
     app.parse(argc, argv);

@@ -7,7 +7,13 @@ int main(int argc, char** argv) {
   cosim::app::prefer_passive_waiting(argv);
   cosim::app::RunOptions opt;
   if (auto rc = cosim::app::parse_command_line(argc, argv, "solid_solver",
-                                               "explicit Lagrange hydro FEM with strength (standalone run)", opt))
+                                               "explicit Lagrange hydro FEM with strength (standalone run)",
+                                               "  solid_solver configs/solid_sedov_lulesh.yaml --out runs/sedov\n"
+                                               "  solid_solver configs/solid_sedov_lulesh.yaml --out runs/sedov_30 "
+                                               "--set 'solid.mesh.cells=[30,30,30]'\n"
+                                               "  cosim run configs/shock_panel_2d.yaml     coupled to the fluid "
+                                               "(cosim starts solid_solver)",
+                                               opt))
     return *rc;
   return cosim::solid::run_solid(opt);
 }

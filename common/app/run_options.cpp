@@ -11,8 +11,9 @@
 namespace cosim::app {
 
 std::optional<int> parse_command_line(int argc, char** argv, const std::string& name, const std::string& description,
-                                      RunOptions& opt) {
+                                      const std::string& examples, RunOptions& opt) {
   CLI::App app{name + ": " + description};
+  app.footer("Examples:\n" + examples);
   app.add_option("scene", opt.scene_file, "scene file (YAML)")->required();
   app.add_option("--out", opt.out_dir, "output directory (created if missing)")->required();
   app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");

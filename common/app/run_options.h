@@ -25,9 +25,9 @@ struct RunOptions {
 };
 
 // Parses the command line and sets up logging on stderr as "[name] level: message". Returns an exit
-// code when the process should stop now (--help: 0, bad arguments: 2), nothing otherwise.
+// code when the process should stop now (--help: 0, bad arguments: 2), nothing otherwise. `examples` end --help.
 std::optional<int> parse_command_line(int argc, char** argv, const std::string& name, const std::string& description,
-                                      RunOptions& opt);
+                                      const std::string& examples, RunOptions& opt);
 
 // Loads the scene with `load(file, overrides)` and applies --threads; a configuration error is
 // logged ("file:line: key: expected ...") and gives nothing (the caller exits with code 2).
