@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 
 #include "common/app/run_driver.h"
 #include "common/coupling/errors.h"
@@ -39,6 +40,11 @@ Hub::~Hub() {
   try {
     sock_.set_linger(1000);  // deliver the last Stop / Error
   } catch (...) {}
+  // The socket file of an ipc endpoint this hub bound: libzmq leaves it behind when the socket closes.
+  if (bound_.rfind("ipc://", 0) == 0 && bound_.size() > 6 && bound_[6] != '@') {
+    std::error_code ignored;
+    std::filesystem::remove(bound_.substr(6), ignored);
+  }
 }
 
 void Hub::reply_error(const std::string& id, const std::string& reason) {

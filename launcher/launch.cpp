@@ -48,6 +48,15 @@ std::string progress_text(const fs::path& file, double elapsed) {
                      t, t_end, 100.0 * t / t_end, dt, cycle > 0 ? 1e3 * elapsed / cycle : 0.0,
                      util::format_duration(elapsed), util::format_duration(eta));
 }
+// The output folders of processes that were stopped before they wrote anything (DIR/fluid, ...): a failed run
+// keeps its logs and run_summary.json, not empty folders.
+void remove_empty_outputs(const fs::path& out, const std::vector<Child>& children) {
+  for (const Child& c : children) {
+    std::error_code ec;
+    const fs::path dir = out / c.name;
+    if (fs::is_directory(dir, ec) && fs::is_empty(dir, ec) && !ec) fs::remove(dir, ec);
+  }
+}
 }  // namespace
 
 std::string make_token() {
@@ -122,7 +131,17 @@ int run(const LaunchOptions& opt) {
     return 2;
   }
   const fs::path out = opt.out.empty() ? fs::path("runs") / name : opt.out;
+  // The endpoint before the run directory: a run that cannot start leaves no directory behind.
+  const std::string token = make_token();
+  std::string endpoint;
+  try {
+    endpoint = opt.tcp ? tcp_endpoint(opt.tcp_host) : ipc_endpoint(out, token);
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: " << e.what() << "\n";
+    return 2;
+  }
   std::error_code ec;
+  const bool fresh = !fs::exists(out, ec);
   fs::create_directories(out, ec);
   if (ec) {
     std::cerr << fmt::format("cosim: {}: cannot create the run directory: {}\n", out.string(), ec.message());
@@ -147,14 +166,8 @@ int run(const LaunchOptions& opt) {
   if (fs::absolute(opt.scene) != scene) fs::copy_file(opt.scene, scene, fs::copy_options::overwrite_existing, ec);
   if (ec) {
     std::cerr << fmt::format("cosim: cannot copy {} to {}: {}\n", opt.scene, scene.string(), ec.message());
-    return 2;
-  }
-  const std::string token = make_token();
-  std::string endpoint;
-  try {
-    endpoint = opt.tcp ? tcp_endpoint(opt.tcp_host) : ipc_endpoint(out, token);
-  } catch (const std::exception& e) {
-    std::cerr << "cosim: " << e.what() << "\n";
+    std::error_code ignored;
+    if (fresh) fs::remove_all(out, ignored);  // this run made it (and holds its lock): nothing of it is kept
     return 2;
   }
 
@@ -214,6 +227,7 @@ int run(const LaunchOptions& opt) {
   const auto stop_children = [&] { stop_all(children, 3.0); };
   const double launch_time = now_s();
   const auto summarise = [&](const std::string& status, const std::string& reason, const Child* failed) {
+    if (status != "completed") remove_empty_outputs(out, children);
     write_run_summary(out, {status, reason, failed, now_s() - launch_time}, children, coupled);
   };
   try {
