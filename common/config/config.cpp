@@ -223,7 +223,9 @@ Node Node::child_or_empty(const std::string& key) {
 
 std::string scene_base_dir(const std::string& scene_file) {
   const char* dir = std::getenv("COSIM_SCENE_DIR");
-  if (dir && *dir) return dir;
+  const char* copy = std::getenv("COSIM_SCENE_COPY");
+  std::error_code ec;
+  if (dir && *dir && copy && std::filesystem::equivalent(scene_file, copy, ec)) return dir;
   return std::filesystem::path(scene_file).parent_path().string();
 }
 

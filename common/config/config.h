@@ -114,9 +114,9 @@ Node load_string(const std::string& text, const std::string& name = "<string>",
 // own (then optional) time.end defaults to; 0 for a standalone scene.
 double coupled_end_time(Node& root);
 
-// The directory that relative file names of a scene (a Gmsh mesh) are resolved against: $COSIM_SCENE_DIR when set
-// (`cosim run` sets it to the directory of the scene the user gave, since the solvers read a copy of it in the run
-// directory), else the directory of `scene_file`.
+// The directory that relative file names of a scene (a Gmsh mesh) are resolved against: $COSIM_SCENE_DIR when
+// `scene_file` is $COSIM_SCENE_COPY (`cosim run` sets both: the solvers read a copy of the user's scene in the run
+// directory, its names are relative to the user's), else the directory of `scene_file`.
 std::string scene_base_dir(const std::string& scene_file);
 
 // Levenshtein distance, for "did you mean" suggestions.
