@@ -109,11 +109,14 @@ int run(const LaunchOptions& opt) {
     coupled = root.has("solid");
     name = root.get<std::string>("name", fs::path(opt.scene).stem().string());
     // launcher: {fluid: CMD, solid: CMD, coupler: CMD}: the programs of this scene (e.g. a solid written in
-    // Python); {bin} is the directory of cosim, {python} the build's python directory.
+    // Python); {bin} is the directory of cosim, {python} the build's python directory, {scene_dir} the directory
+    // of the scene the user gave (a program kept next to the scene).
     if (auto l = root.optional_child("launcher")) {
       const auto expand = [&](std::string c) {
-        for (const auto& [key, value] : {std::pair<std::string, std::string>{"{bin}", opt.bin_dir.string()},
-                                         {"{python}", (opt.bin_dir.parent_path() / "python").string()}})
+        for (const auto& [key, value] :
+             {std::pair<std::string, std::string>{"{bin}", opt.bin_dir.string()},
+              {"{python}", (opt.bin_dir.parent_path() / "python").string()},
+              {"{scene_dir}", fs::absolute(opt.scene).parent_path().lexically_normal().string()}})
           for (std::size_t at; (at = c.find(key)) != std::string::npos;) c.replace(at, key.size(), value);
         return c;
       };
