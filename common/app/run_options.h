@@ -22,6 +22,8 @@ struct RunOptions {
   std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
   std::string token;    // per-run token of a coupled run
   bool coupled() const { return !coupler.empty(); }
+  // The scene as messages name it: the user's file, also when the solver reads cosim run's copy.
+  std::string scene_name() const { return config::scene_name(scene_file); }
 };
 
 // Parses the command line and sets up logging on stderr as "[name] level: message". Returns an exit

@@ -331,14 +331,17 @@ Node load_file(const std::string& file, const std::vector<std::string>& override
   if (!in) throw ConfigError(fmt::format("{}: cannot open scene file", file));
   std::stringstream ss;
   ss << in.rdbuf();
-  // Under `cosim run` the solvers read the launcher's copy of the scene: messages name the user's file
-  // ($COSIM_SCENE_FILE; the copy is $COSIM_SCENE_COPY, line for line the same).
-  std::string name = file;
+  return load_string(ss.str(), scene_name(file), overrides);
+}
+
+std::string scene_name(const std::string& file) {
+  // Under `cosim run` the solvers read the launcher's copy of the scene ($COSIM_SCENE_COPY), line for line the
+  // user's file ($COSIM_SCENE_FILE).
   const char* copy = std::getenv("COSIM_SCENE_COPY");
   const char* given = std::getenv("COSIM_SCENE_FILE");
   std::error_code ec;
-  if (copy && given && std::filesystem::equivalent(file, copy, ec)) name = given;
-  return load_string(ss.str(), name, overrides);
+  if (copy && given && *given && std::filesystem::equivalent(file, copy, ec)) return given;
+  return file;
 }
 
 namespace {

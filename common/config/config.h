@@ -119,6 +119,10 @@ double coupled_end_time(Node& root);
 // directory, its names are relative to the user's), else the directory of `scene_file`.
 std::string scene_base_dir(const std::string& scene_file);
 
+// The name messages give a scene file: the file the user gave to `cosim run` ($COSIM_SCENE_FILE) when `file` is the
+// launcher's copy of it ($COSIM_SCENE_COPY), else `file`.
+std::string scene_name(const std::string& file);
+
 // Levenshtein distance, for "did you mean" suggestions.
 std::size_t edit_distance(const std::string& a, const std::string& b);
 std::string closest(const std::string& word, const std::set<std::string>& candidates);

@@ -23,7 +23,7 @@ int run_fluid_coupled(const RunOptions& opt) {
     spdlog::error(
         "{}: fluid.embedded.bodies: a coupled run takes its embedded boundary from the solid; remove the "
         "bodies or run the fluid alone",
-        opt.scene_file);
+        opt.scene_name());
     return 2;
   }
   std::unique_ptr<FluidSimulation> sim;
@@ -32,7 +32,7 @@ int run_fluid_coupled(const RunOptions& opt) {
     sim = make_simulation(scene);
     boundary = coupled::make_coupled_boundary(*sim);
   } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
     return 2;
   }
   if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders

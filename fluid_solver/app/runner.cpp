@@ -82,7 +82,7 @@ int run_fluid(const RunOptions& opt) {
   try {
     sim = make_simulation(scene);
   } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_file, e.what());
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
     return 2;
   }
   if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders

@@ -76,10 +76,10 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
   try {
     r.sim = std::make_unique<Simulation>(r.scene);
   } catch (const StateError& e) {
-    spdlog::error("{}: {}", opt.scene_file, e.what());
+    spdlog::error("{}: {}", opt.scene_name(), e.what());
     r.exit_code = 3;
   } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_file, e.what());
+    spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_name(), e.what());
   }
   if (r.sim && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
     r.sim.reset();

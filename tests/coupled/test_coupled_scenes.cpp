@@ -130,6 +130,23 @@ TEST(CoupledScenes, SceneErrorsNameTheUsersFile) {
   EXPECT_EQ(log.find("run/scene.yaml:"), std::string::npos) << log;
 }
 
+// A scene the fluid cannot set up for a coupled run (its own embedded bodies) is named as the user gave it too.
+TEST(CoupledScenes, SetUpErrorsNameTheUsersFile) {
+  const fs::path dir = run_dir("setup_error");
+  fs::create_directories(dir);
+  const fs::path user = dir / "my_piston.yaml";
+  fs::copy_file(scene_file("piston_2d"), user);
+  EXPECT_EQ(cosim_run(user, dir / "run",
+                      "--set 'fluid.embedded.bodies=[{shape: box, lower: [0.1, 0.1], upper: [0.2, 0.2]}]'"),
+            2);
+  const std::string log = read_text(dir / "run" / "fluid.log");
+  EXPECT_NE(
+      log.find(user.string() + ": fluid.embedded.bodies: a coupled run takes its embedded boundary from the solid"),
+      std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("run/scene.yaml"), std::string::npos) << log;
+}
+
 TEST(CoupledScenes, KilledFluidSolverStopsEverythingWithin5s) {
   const fs::path dir = run_dir("killed");
   const std::string cmd = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
