@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", cosim::app::version_line("cosim"));
   auto* run = app.add_subcommand("run", "run a scene (fluid alone when it has no solid: section)");
+  run->set_version_flag("--version", cosim::app::version_line("cosim"));
   cosim::launcher::LaunchOptions o;
   std::string out;
   run->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);

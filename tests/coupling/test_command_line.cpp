@@ -30,6 +30,9 @@ TEST(CommandLine, CosimNamesAnOptionBeforeTheCommandAndAMissingCommand) {
   EXPECT_NE(log.find("cosim: unknown option '--output' (did you mean '--out'?); options follow the command"),
             std::string::npos)
       << log;
+  std::tie(rc, log) = run_exe(dir, cosim + " run --version");  // the version is known after the command too
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_EQ(log.rfind("cosim 0.", 0), 0u) << log;
   std::tie(rc, log) = run_exe(dir, cosim + " --out x run s.yaml");
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("cosim: '--out' is an option of 'run': cosim run SCENE.yaml --out ..."), std::string::npos) << log;
