@@ -122,8 +122,11 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
       sock_.send({id, coupling::encode(w)}, 500);
       const std::string who = e->hello().program().empty() ? "a peer" : e->hello().program();
       const std::string msg = fmt::format("refused {} (pid {}): {}", who, e->hello().pid(), reason);
-      if (!handshake_done_) throw coupling::Refused(msg);
-      spdlog::warn("{}", msg);  // a stranger during the run: refused, the run goes on
+      // A Hello without this run's token is a stranger's (the launcher gives the run's own solvers the token):
+      // refused and logged, the run goes on. One of the run's own solvers refused (its version, its scene) ends
+      // the start-up, and any Hello once the run is going is refused.
+      if (!handshake_done_ && h.token() == opt_.token) throw coupling::Refused(msg);
+      spdlog::warn("{}; the run goes on", msg);
       return false;
     }
     Peer& p = peer(coupling::from_pb(e->hello().role()));
