@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -32,7 +34,16 @@ std::string Peer::describe(Role r) const {
 
 Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(transcript) {
   sock_.set_router_mandatory();
-  sock_.bind(o.endpoint);
+  // An ipc socket file takes the process's umask: only this user may connect to it (a shared node's other users
+  // could otherwise, under umask 000).
+  const mode_t old = ::umask(077);
+  try {
+    sock_.bind(o.endpoint);
+  } catch (...) {
+    ::umask(old);
+    throw;
+  }
+  ::umask(old);
   bound_ = sock_.last_endpoint();
 }
 

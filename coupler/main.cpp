@@ -14,6 +14,7 @@
 
 #include "common/app/cli_suggest.h"
 #include "common/app/run_driver.h"
+#include "common/app/run_options.h"
 #include "common/app/version.h"
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   app.add_option("scene", scene, "scene file (YAML); only its coupling: section is read")->required();
   app.add_option("--endpoint", endpoint, "ZeroMQ endpoint to bind: ipc://PATH or tcp://HOST:PORT")->required();
-  app.add_option("--token", token, "per-run token the solvers must present");
+  app.add_option("--token", token, "per-run token the solvers must present (default: $COSIM_TOKEN)");
   app.add_option("--out", out, "output directory (interface_history.csv, timing.csv, coupler_summary.json)");
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
   app.add_option("--transcript", transcript, "write every message in protobuf text form to FILE");
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
     return 4;
   }
   ho.endpoint = endpoint;
-  ho.token = token;
+  ho.token = token.empty() ? cosim::app::token_from_environment() : token;
   ho.mode = cfg.mode;
   ho.scheme = cfg.scheme;
   ho.timeout = cfg.timeout;

@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -64,10 +65,14 @@ std::string make_token() {
   return fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
 }
 
-std::string ipc_endpoint(const fs::path& dir, const std::string& token) {
+std::string ipc_endpoint(const fs::path& dir) {
   const fs::path p = fs::absolute(dir) / "coupler.sock";
   if (p.string().size() < 100) return "ipc://" + p.string();
-  return "ipc:///tmp/cosim-" + token.substr(0, 16) + ".sock";  // sun_path holds 108 bytes
+  // sun_path holds 108 bytes: a private directory of its own (0700, named at random, never from the token)
+  char tmpl[] = "/tmp/cosim-XXXXXX";
+  if (!::mkdtemp(tmpl))
+    throw std::runtime_error(fmt::format("cannot make a directory for the socket: {}", std::strerror(errno)));
+  return "ipc://" + std::string(tmpl) + "/coupler.sock";
 }
 
 std::string tcp_endpoint(const std::string& host) {
@@ -138,11 +143,20 @@ int run(const LaunchOptions& opt) {
   const std::string token = make_token();
   std::string endpoint;
   try {
-    endpoint = opt.tcp ? tcp_endpoint(opt.tcp_host) : ipc_endpoint(out, token);
+    endpoint = opt.tcp ? tcp_endpoint(opt.tcp_host) : ipc_endpoint(out);
   } catch (const std::exception& e) {
     std::cerr << "cosim: " << e.what() << "\n";
     return 2;
   }
+  // A private socket directory made for a long run-directory path goes when the run ends, however it ends.
+  struct SocketDir {
+    fs::path dir;
+    ~SocketDir() {
+      std::error_code ignored;
+      if (!dir.empty()) fs::remove_all(dir, ignored);
+    }
+  } socket_dir;
+  if (endpoint.rfind("ipc:///tmp/cosim-", 0) == 0) socket_dir.dir = fs::path(endpoint.substr(6)).parent_path();
   std::error_code ec;
   const bool fresh = !fs::exists(out, ec);
   fs::create_directories(out, ec);
@@ -191,7 +205,8 @@ int run(const LaunchOptions& opt) {
   const auto with_common = [&](std::vector<std::string> argv, const char* sub, bool client) {
     argv.push_back(scene.string());
     argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
-    if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint, "--token", token}); }
+    // The token goes by the environment ($COSIM_TOKEN, set below): a command line is world-readable.
+    if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint}); }
     for (const auto& o : opt.overrides) argv.insert(argv.end(), {"--set", o});
     if (opt.quiet && !client) argv.push_back("--quiet");
     return argv;
@@ -226,6 +241,8 @@ int run(const LaunchOptions& opt) {
   // ... and their messages name the user's file, not the copy (config::load_file).
   ::setenv("COSIM_SCENE_FILE", opt.scene.c_str(), 1);
   ::setenv("COSIM_SCENE_COPY", scene.string().c_str(), 1);
+  // The run's token, for the processes it starts only: an environment is readable by its owner alone.
+  ::setenv("COSIM_TOKEN", token.c_str(), 1);
 
   const auto stop_children = [&] { stop_all(children, 3.0); };
   const double launch_time = now_s();

@@ -26,8 +26,9 @@ struct LaunchOptions {
 // 130 when interrupted. Messages go to stderr.
 int run(const LaunchOptions& opt);
 
-// ipc://<dir>/coupler.sock, or ipc:///tmp/cosim-<token>.sock when that path is too long for a socket name.
-std::string ipc_endpoint(const std::filesystem::path& dir, const std::string& token);
+// ipc://<dir>/coupler.sock, or ipc:///tmp/cosim-XXXXXX/coupler.sock (a private directory made for it) when that
+// path is too long for a socket name.
+std::string ipc_endpoint(const std::filesystem::path& dir);
 // tcp://host:port with a port that was free a moment ago.
 std::string tcp_endpoint(const std::string& host);
 // 32 random hex digits.

@@ -77,7 +77,8 @@ def main():
     ap.add_argument("scene")
     ap.add_argument("--out", default=".")
     ap.add_argument("--coupler", required=True)
-    ap.add_argument("--token", default="")
+    ap.add_argument("--token", default=os.environ.get("COSIM_TOKEN", ""),
+                    help="the run's token (default: $COSIM_TOKEN, which cosim run sets)")
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--mass", type=float)
     ap.add_argument("--area", type=float)

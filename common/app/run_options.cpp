@@ -3,6 +3,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <iostream>
 
 #include "common/app/cli_suggest.h"
@@ -23,7 +24,9 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   app.add_option("--coupler", opt.coupler,
                  "coupled run: the coupler's endpoint (ipc://PATH or tcp://HOST:PORT); the coupler sets time steps "
                  "and output times");
-  app.add_option("--token", opt.token, "coupled run: the per-run token the coupler expects");
+  app.add_option("--token", opt.token,
+                 "coupled run: the per-run token the coupler expects (default: $COSIM_TOKEN, which cosim run sets: a "
+                 "command line is visible to every user of the machine, an environment only to its owner)");
   app.set_version_flag("--version", version_line(name));
   if (const std::string unknown = unknown_option(app, argc, argv); !unknown.empty()) {
     std::cerr << name << ": " << unknown << "\nRun with --help for more information.\n";
@@ -35,6 +38,7 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
   }
+  if (opt.token.empty()) opt.token = token_from_environment();
   spdlog::set_default_logger(spdlog::stderr_color_mt(name));  // stdout stays free for data
   spdlog::set_pattern("[" + name + "] %^%l%$: %v");
   if (opt.quiet) spdlog::set_level(spdlog::level::warn);
@@ -49,6 +53,11 @@ bool make_output_directory(const std::filesystem::path& dir) {
     return false;
   }
   return true;
+}
+
+std::string token_from_environment() {
+  const char* t = std::getenv("COSIM_TOKEN");
+  return t ? t : "";
 }
 
 }  // namespace cosim::app

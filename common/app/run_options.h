@@ -20,7 +20,7 @@ struct RunOptions {
   bool quiet = false;
   int threads = 0;      // 0: scene value / OpenMP default
   std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
-  std::string token;    // per-run token of a coupled run
+  std::string token;    // per-run token of a coupled run (--token, else $COSIM_TOKEN)
   bool coupled() const { return !coupler.empty(); }
   // The scene as messages name it: the user's file, also when the solver reads cosim run's copy.
   std::string scene_name() const { return config::scene_name(scene_file); }
@@ -47,5 +47,8 @@ std::optional<Scene> load_scene(const RunOptions& opt, Load&& load) {
 
 // Creates the output directory; logs and returns false when that is impossible.
 bool make_output_directory(const std::filesystem::path& dir);
+
+// $COSIM_TOKEN, where cosim run passes the per-run token to the processes it starts ("" when unset).
+std::string token_from_environment();
 
 }  // namespace cosim::app
