@@ -29,6 +29,7 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   c.heartbeat_interval = n.get<double>("heartbeat_interval", c.timeout / 10.0, in_open_closed(0.0, c.timeout / 2.0));
   c.connect_timeout = n.get<double>("connect_timeout", 30.0, positive());
   c.step_timeout = n.get<double>("step_timeout", 0.0, non_negative());
+  c.max_message_mb = n.get<double>("max_message_mb", 256.0, in_range(0.01, 65536.0));
   c.pressure_predictor = n.get<std::string>("predictor", "linear", one_of({"linear", "none"})) == "linear";
   n.finish();
   return c;

@@ -27,7 +27,8 @@ struct CouplerConfig {
   double timeout = 3.0;
   double heartbeat_interval = 0.5;
   double connect_timeout = 30.0;
-  double step_timeout = 0.0;       // 0: automatic (HubOptions)
+  double step_timeout = 0.0;  // 0: automatic (HubOptions)
+  double max_message_mb = 256.0;
   bool pressure_predictor = true;  // predictor: linear
 };
 

@@ -34,6 +34,7 @@ std::string Peer::describe(Role r) const {
 
 Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(transcript) {
   sock_.set_router_mandatory();
+  sock_.set_max_message_size(static_cast<std::int64_t>(o.max_message_bytes));
   // An ipc socket file takes the process's umask: only this user may connect to it (a shared node's other users
   // could otherwise, under umask 000).
   const mode_t old = ::umask(077);

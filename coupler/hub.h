@@ -27,6 +27,7 @@ struct HubOptions {
   // [s] the longest a peer may take to answer, heartbeats or not; 0: automatic, kAutoStepFactor times the
   // longest answer it has given so far, at least kAutoStepFloor.
   double step_timeout = 0.0;
+  double max_message_bytes = 256.0 * 1024 * 1024;  // a larger message drops its connection unread
 };
 inline constexpr double kAutoStepFactor = 50.0, kAutoStepFloor = 120.0;
 

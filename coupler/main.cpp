@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
   ho.heartbeat_interval = cfg.heartbeat_interval;
   ho.connect_timeout = cfg.connect_timeout;
   ho.step_timeout = cfg.step_timeout;
+  ho.max_message_bytes = cfg.max_message_mb * 1024 * 1024;
   try {
     coupler::Transcript tr(transcript);
     coupler::Hub hub(ho, transcript.empty() ? nullptr : &tr);

@@ -51,6 +51,10 @@ void ZmqSocket::set_router_mandatory() {
   if (zmq_setsockopt(sock_, ZMQ_ROUTER_MANDATORY, &on, sizeof on) != 0) fail("router_mandatory", endpoint_);
 }
 
+void ZmqSocket::set_max_message_size(std::int64_t bytes) {
+  if (zmq_setsockopt(sock_, ZMQ_MAXMSGSIZE, &bytes, sizeof bytes) != 0) fail("maxmsgsize", endpoint_);
+}
+
 void ZmqSocket::monitor_disconnections(const std::string& inproc_endpoint) {
   if (zmq_socket_monitor(sock_, inproc_endpoint.c_str(), ZMQ_EVENT_DISCONNECTED) != 0)
     fail("socket monitor", inproc_endpoint);

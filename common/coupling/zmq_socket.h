@@ -2,6 +2,7 @@
 // Every message is a list of frames; errors are CouplingError with zmq_strerror and the endpoint.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ class ZmqSocket {
   void set_linger(int ms);
   // ROUTER: sending to an unknown routing id fails (EHOSTUNREACH) instead of being dropped.
   void set_router_mandatory();
+  // Messages larger than `bytes` are not received: libzmq drops the connection that sends one, before it is
+  // read into memory.
+  void set_max_message_size(std::int64_t bytes);
   // The endpoint actually bound (resolves tcp://127.0.0.1:* to the chosen port).
   std::string last_endpoint() const;
 

@@ -117,6 +117,28 @@ TEST(CouplingProcesses, MalformedBytesGetAnErrorReplyAndNoCrash) {
   for (auto& c : cs) EXPECT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
 }
 
+// A message larger than coupling.max_message_mb never reaches the coupler's memory: libzmq drops the connection
+// that sends it, the sender gets no answer, and the run goes on with its own solvers.
+TEST(CouplingProcesses, AnOversizedMessageDropsOnlyItsConnection) {
+  const fs::path dir = test_dir("oversized");
+  const fs::path scene = write_scene(dir, std::string(kShort) + "  max_message_mb: 1\n");
+  const std::string ep = "ipc://" + (dir / "c.sock").string();
+  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out"), dir)};
+  launcher::start(cs[0]);
+  coupling::ZmqContext ctx;
+  coupling::ZmqSocket s(ctx, coupling::ZmqSocket::Type::Dealer);
+  s.connect(ep);
+  ASSERT_TRUE(s.send({std::string(3u << 20, 'x')}));
+  coupling::Frames f;
+  EXPECT_FALSE(s.receive(f, 1000)) << "the coupler answered a 3 MB message";
+  std::vector<Child> peers{child("fluid", peer_args("fluid", ep, scene), dir),
+                           child("solid", peer_args("solid", ep, scene), dir)};
+  for (auto& c : peers) launcher::start(c);
+  cs.insert(cs.end(), peers.begin(), peers.end());
+  wait_all(cs, 20);
+  for (auto& c : cs) EXPECT_EQ(c.exit_code, 0) << c.name << ": " << read_file(c.log);
+}
+
 // The coupler keeps what a solver sends ahead of the cycle (a pipelined solid's faces and proposal) in that
 // solver's inbox; a message that is still out of order when its turn comes, or a flood of them, stops the run
 // with a message naming the peer and the message, never a hang.
