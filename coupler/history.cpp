@@ -10,20 +10,26 @@
 namespace cosim::coupler {
 
 namespace {
-std::ofstream open(const std::filesystem::path& p) {
-  std::ofstream f(p);
-  if (!f) throw coupling::CouplingError(fmt::format("{}: cannot write", p.string()));
-  return f;
+// The histories' lines reach the file whole or not at all (io::LineLog); a failure is the coupler's error.
+io::LineLog open(const std::filesystem::path& p, std::string_view header) {
+  try {
+    return io::LineLog(p, header);
+  } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+}
+void append(io::LineLog& log, const std::string& line) {
+  try {
+    log.append(line);
+  } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
 }
 }  // namespace
 
-History::History(const std::filesystem::path& dir) : dir_(dir), interface_(dir, "interface") {
-  hist_ = open(dir / "interface_history.csv");
-  timing_ = open(dir / "timing.csv");
-  hist_ << "cycle,time,dt,force_x,force_y,force_z,velocity_x,velocity_y,velocity_z,centre_x,centre_y,centre_z,"
-           "pressure\n";
-  timing_ << "cycle,wall,solid,fluid,coupler,comm\n";
-}
+History::History(const std::filesystem::path& dir)
+    : dir_(dir),
+      hist_(open(dir / "interface_history.csv",
+                 "cycle,time,dt,force_x,force_y,force_z,velocity_x,velocity_y,velocity_z,centre_x,centre_y,centre_z,"
+                 "pressure\n")),
+      timing_(open(dir / "timing.csv", "cycle,wall,solid,fluid,coupler,comm\n")),
+      interface_(dir, "interface") {}
 
 void History::record(long cycle, double time, double dt, const coupling::Faces& faces,
                      const coupling::InterfaceStates& st) {
@@ -41,23 +47,22 @@ void History::record(long cycle, double time, double dt, const coupling::Faces& 
     pressure += a * p;
   }
   const double inv = area > 0 ? 1.0 / area : 0.0;
-  hist_ << fmt::format(
-      "{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n", cycle,
-      time, dt, force[0], force[1], force[2], vel[0] * inv, vel[1] * inv, vel[2] * inv, centre[0] * inv,
-      centre[1] * inv, centre[2] * inv, pressure * inv);
+  append(hist_,
+         fmt::format(
+             "{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
+             cycle, time, dt, force[0], force[1], force[2], vel[0] * inv, vel[1] * inv, vel[2] * inv, centre[0] * inv,
+             centre[1] * inv, centre[2] * inv, pressure * inv));
 }
 
 void History::record_timing(long cycle, const CycleTiming& t) {
-  timing_ << fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid, t.coupler,
-                         t.comm());
+  append(timing_,
+         fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid, t.coupler, t.comm()));
 }
 
 void History::progress(long cycle, double time, double t_end, double dt, bool force) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   if (!force && now - last_progress_ < 0.5) return;
   last_progress_ = now;
-  hist_.flush();
-  timing_.flush();
   const auto tmp = dir_ / "progress.txt.tmp";
   {
     std::ofstream f(tmp);

@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/io/line_log.h"
+
 #include "common/coupling/types.h"
 #include "common/io/snapshot_writer.h"
 
@@ -38,7 +40,7 @@ class History {
 
  private:
   std::filesystem::path dir_;
-  std::ofstream hist_, timing_;
+  io::LineLog hist_, timing_;
   double last_progress_ = -1e300;
   io::SnapshotSeries interface_;
 };

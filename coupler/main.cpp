@@ -19,6 +19,7 @@
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/scene_hash.h"
+#include "common/io/atomic_file.h"
 #include "coupler/coupler_config.h"
 #include "coupler/cycle.h"
 #include "coupler/hub.h"
@@ -43,7 +44,7 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
                             {"coupler", s.total.coupler / n},
                             {"comm", s.total.comm() / n}};
   j["comm_fraction"] = s.total.wall > 0 ? s.total.comm() / s.total.wall : 0.0;
-  std::ofstream(dir / "coupler_summary.json") << j.dump(2) << "\n";
+  io::write_file_atomically(dir / "coupler_summary.json", j.dump(2) + "\n");  // whole, or the earlier one
 }
 }  // namespace
 

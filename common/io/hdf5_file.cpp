@@ -167,6 +167,11 @@ std::string read_fixed_string(hid_t attr, hid_t file_type, const Site& site) {
 
 }  // namespace
 
+// HDF5 must not close files at exit: one whose close failed (a full disk) stays open in the library, and its
+// termination handler then crashes flushing it again. Every file is closed explicitly (published or discarded)
+// before that. H5dont_atexit must come before any other HDF5 call: at load time.
+[[maybe_unused]] const herr_t kNoAtExit = H5dont_atexit();
+
 Hdf5File::Hdf5File(fs::path path, Mode mode) : path_(std::move(path)) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // we report errors ourselves
   if (mode == Mode::Create) {

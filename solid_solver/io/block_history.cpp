@@ -35,28 +35,25 @@ std::vector<BlockTotals> block_totals(const Simulation& sim) {
   return out;
 }
 
-BlockHistory::BlockHistory(const std::filesystem::path& dir) : path_(dir / "block_history.csv") {
-  out_.open(path_, std::ios::trunc);
-  if (!out_) throw std::runtime_error(fmt::format("cannot write {}", path_.string()));
-  out_ << "time,step,block,mass,velocity_x,velocity_y,velocity_z,kinetic_energy,internal_energy,plastic_work,"
-          "max_von_mises,max_plastic_strain\n";
-  out_.flush();
-}
+BlockHistory::BlockHistory(const std::filesystem::path& dir)
+    : out_(dir / "block_history.csv",
+           "time,step,block,mass,velocity_x,velocity_y,velocity_z,kinetic_energy,internal_energy,plastic_work,"
+           "max_von_mises,max_plastic_strain\n") {}
 
 void BlockHistory::record(const Simulation& sim) {
   if (sim.steps() == last_step_) return;
   last_step_ = sim.steps();
   const auto totals = block_totals(sim);
+  std::string rows;
   for (std::size_t b = 0; b < totals.size(); ++b) {
     const BlockTotals& t = totals[b];
     const double im = t.mass > 0 ? 1.0 / t.mass : 0.0;
-    out_ << fmt::format("{:.12g},{},{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
-                        sim.time(), sim.steps(), sim.mesh().block_names[b], t.mass, t.momentum[0] * im,
-                        t.momentum[1] * im, t.momentum[2] * im, t.kinetic, t.internal, t.plastic_work, t.max_von_mises,
-                        t.max_plastic_strain);
+    rows +=
+        fmt::format("{:.12g},{},{},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
+                    sim.time(), sim.steps(), sim.mesh().block_names[b], t.mass, t.momentum[0] * im, t.momentum[1] * im,
+                    t.momentum[2] * im, t.kinetic, t.internal, t.plastic_work, t.max_von_mises, t.max_plastic_strain);
   }
-  out_.flush();
-  if (!out_) throw std::runtime_error(fmt::format("cannot write {}", path_.string()));
+  out_.append(rows);  // the record's rows whole, or none of them
 }
 
 }  // namespace cosim::solid

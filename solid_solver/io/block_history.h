@@ -3,14 +3,14 @@
 //   time [s], step, block (name), mass [kg], velocity_x/y/z (mass-averaged, nodal velocities with each element's
 //   mass lumped equally to its corners) [m/s], kinetic_energy, internal_energy, plastic_work [J],
 //   max_von_mises [Pa], max_plastic_strain [-]
-// Per unit depth (kg/m, J/m) in 2D. Rows are flushed as they are written; a run into the same directory
-// replaces the file.
+// Per unit depth (kg/m, J/m) in 2D. Each record's rows reach the file whole or not at all (a full disk leaves a
+// valid table); a run into the same directory replaces the file.
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
+#include "common/io/line_log.h"
 #include "solid_solver/core/simulation.h"
 
 namespace cosim::solid {
@@ -30,8 +30,7 @@ class BlockHistory {
   void record(const Simulation& sim);
 
  private:
-  std::filesystem::path path_;
-  std::ofstream out_;
+  io::LineLog out_;
   long last_step_ = -1;
 };
 
