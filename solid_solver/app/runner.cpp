@@ -108,6 +108,7 @@ int run_solid(const RunOptions& opt) {
     BlockHistory& history;
     int every;
     double stable_dt() const { return sim.stable_dt(); }
+    std::string limiting_step() const { return sim.limiting_step(); }
     double time() const { return sim.time(); }
     long steps() const { return sim.steps(); }
     void advance(double dt) {

@@ -393,6 +393,32 @@ double Simulation::stable_dt() const {
   return dt;
 }
 
+std::string Simulation::limiting_step() const {
+  const int D = mesh_.dim;
+  int worst = -1;
+  double worst_dt = 1e300;
+  for (int z = 0; z < mesh_.num_elements; ++z) {
+    if (scene_.blocks[mesh_.element_block[z]].rigid) continue;
+    const double L = D == 3 ? std::cbrt(std::max(st_.vol[z], 0.0)) : std::sqrt(std::max(st_.vol[z], 0.0));
+    const double rho = st_.emass[z] / std::max(st_.vol[z], 1e-300);
+    const double w = st_.c[z] + std::sqrt(std::max(st_.q[z], 0.0) / rho);
+    const double dt = w > 0 ? L / w : 1e300;
+    if (dt < worst_dt) {
+      worst_dt = dt;
+      worst = z;
+    }
+  }
+  if (worst < 0) return "";
+  const int z = worst;
+  const auto c = element_centroid(mesh_, st_.x, z);
+  return fmt::format(
+      "element {} of block '{}' at ({:.6g}, {:.6g}, {:.6g}): size {:.4g} m, sound speed {:.4g} m/s, density "
+      "{:.6g} kg/m^3, pressure {:.6g} Pa, viscosity {:.6g} Pa",
+      z, mesh_.block_names[mesh_.element_block[z]], c[0], c[1], c[2],
+      D == 3 ? std::cbrt(std::max(st_.vol[z], 0.0)) : std::sqrt(std::max(st_.vol[z], 0.0)), st_.c[z],
+      st_.emass[z] / std::max(st_.vol[z], 1e-300), st_.p[z], st_.q[z]);
+}
+
 EnergyBudget Simulation::energy() const { return {ie_sum_, ke_, wb_, ale_total_.energy}; }
 
 // ALE: rezone the relaxed nodes, remap the state onto the new mesh, and recompute the element state and corner

@@ -45,6 +45,9 @@ class Simulation {
 
   // Largest stable next step: cfl * element limit, at most dt_growth * last step (dt_initial first).
   double stable_dt() const;
+  // The element that limits the step (the smallest size over sound speed and viscosity), its block, centroid
+  // and state: what a step collapse is reported with.
+  std::string limiting_step() const;
   double time() const { return t_; }
   long steps() const { return steps_; }
   const SolidScene& scene() const { return scene_; }

@@ -129,4 +129,13 @@ TEST(SolidInput, ExecutableExitCodes) {
       << log;
   EXPECT_NE(log.find("element"), std::string::npos) << log;
   EXPECT_NE(log.find("inverted"), std::string::npos) << log;
+  // A step below the floor (here a floor above any stable step): exit code 3, the limiting element named with its
+  // block, place and state; the last snapshot is kept.
+  EXPECT_EQ(
+      run_solver(good.string() + " --out " + (dir / "o8").string() + " --quiet --set solid.numerics.dt_min=1", log), 3)
+      << log;
+  EXPECT_NE(log.find("below the floor 1 s (numerics.dt_min); element "), std::string::npos) << log;
+  EXPECT_NE(log.find("of block 'a' at ("), std::string::npos) << log;
+  EXPECT_NE(log.find("sound speed"), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(dir / "o8" / "solid.xmf"));
 }
