@@ -54,7 +54,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   bool quiet = false;
   app.add_option("scene", scene, "scene file (YAML); only its coupling: section is read")->required();
-  app.add_option("--endpoint", endpoint, "ZeroMQ endpoint to bind: ipc://PATH or tcp://HOST:PORT")->required();
+  app.add_option("--endpoint", endpoint,
+                 "ZeroMQ endpoint to bind: ipc://PATH or tcp://HOST:PORT (required unless --check)");
+  bool check = false;
+  app.add_flag("--check", check, "validate the scene's coupling section, run nothing, write nothing (exit 0 or 2)");
   app.add_option("--token", token, "per-run token the solvers must present (default: $COSIM_TOKEN)");
   app.add_option("--out", out, "output directory (interface_history.csv, timing.csv, coupler_summary.json)");
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
@@ -87,6 +90,14 @@ int main(int argc, char** argv) {
     ho.scene_hash = coupling::scene_hash(scene, overrides);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
+    return 2;
+  }
+  if (check) {
+    spdlog::info("{}: the coupling section of the scene is valid", scene);
+    return 0;
+  }
+  if (endpoint.empty()) {
+    spdlog::error("--endpoint is required (the ZeroMQ endpoint to bind; or --check to validate the scene only)");
     return 2;
   }
   std::error_code ec;

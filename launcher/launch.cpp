@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -26,6 +27,7 @@
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
 #include "launcher/run_summary.h"
+#include "launcher/scene_check.h"
 
 namespace fs = std::filesystem;
 
@@ -98,17 +100,53 @@ std::string tcp_endpoint(const std::string& host) {
 }
 
 std::vector<std::string> split_command(const std::string& cmd) {
-  std::istringstream in(cmd);
   std::vector<std::string> out;
-  for (std::string w; in >> w;) out.push_back(w);
+  std::string word;
+  bool in_word = false;
+  char quote = 0;  // the open quote, 0 outside quotes
+  for (std::size_t i = 0; i < cmd.size(); ++i) {
+    const char c = cmd[i];
+    if (quote == '\'') {  // everything up to the closing ' is literal
+      if (c == '\'') quote = 0;
+      else word += c;
+    } else if (quote == '"') {  // \" and \\ are escapes inside "..."
+      if (c == '"') quote = 0;
+      else if (c == '\\' && i + 1 < cmd.size() && (cmd[i + 1] == '"' || cmd[i + 1] == '\\')) word += cmd[++i];
+      else word += c;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+      in_word = true;
+    } else if (c == '\\' && i + 1 < cmd.size()) {
+      word += cmd[++i];
+      in_word = true;
+    } else if (c == ' ' || c == '\t' || c == '\n') {
+      if (in_word) out.push_back(word);
+      word.clear();
+      in_word = false;
+    } else {
+      word += c;
+      in_word = true;
+    }
+  }
+  if (quote) throw std::runtime_error(fmt::format("unclosed {} quote in the command: {}", quote, cmd));
+  if (in_word) out.push_back(word);
   return out;
 }
 
-int run(const LaunchOptions& opt) {
-  // Scene: must parse; the solid: section decides between a coupled and a fluid-only run.
+namespace {
+// What the scene says about its run: coupled or fluid-only, its name, and the programs (the scene's launcher:
+// commands where the command line gives none). Prints the error and gives nothing when the scene cannot be read.
+struct ScenePlan {
   bool coupled = false;
   std::string name;
-  LaunchOptions eff = opt;  // with the scene's launcher: commands where the command line gives none
+  LaunchOptions eff;
+};
+std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
+  ScenePlan plan;
+  bool& coupled = plan.coupled;
+  std::string& name = plan.name;
+  LaunchOptions& eff = plan.eff;
+  eff = opt;
   try {
     config::Node root = config::load_file(opt.scene, opt.overrides);
     coupled = root.has("solid");
@@ -136,8 +174,49 @@ int run(const LaunchOptions& opt) {
     if (!root.has("fluid")) root.fail("fluid", "a fluid: section (every run has a fluid)");
   } catch (const std::exception& e) {
     std::cerr << "cosim: " << e.what() << "\n";
-    return 2;
+    return std::nullopt;
   }
+  for (const auto& [what, cmd] : {std::pair<const char*, const std::string&>{"the fluid command", eff.fluid_cmd},
+                                  {"the solid command", eff.solid_cmd},
+                                  {"the coupler command", eff.coupler_cmd}}) {
+    try {
+      split_command(cmd);
+    } catch (const std::exception& e) {
+      std::cerr << "cosim: " << what << ": " << e.what() << "\n";
+      return std::nullopt;
+    }
+  }
+  // The whole scene as each of the run's programs reads it, before anything starts or is written.
+  const SceneCheck sc{opt.scene,
+                      opt.overrides,
+                      coupled,
+                      opt.bin_dir,
+                      eff.fluid_cmd.empty(),
+                      eff.solid_cmd.empty(),
+                      eff.coupler_cmd.empty()};
+  if (const auto refusal = check_scene(sc)) {
+    std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
+                             refusal->message);
+    return std::nullopt;
+  }
+  return plan;
+}
+}  // namespace
+
+int check(const LaunchOptions& opt) {
+  const auto plan = read_plan(opt);
+  if (!plan) return 2;
+  std::cout << fmt::format("{}: valid; a {} run of {}\n", opt.scene, plan->coupled ? "coupled" : "fluid-only",
+                           plan->coupled ? "the fluid, the solid and the coupler" : "the fluid");
+  return 0;
+}
+
+int run(const LaunchOptions& opt) {
+  const auto plan = read_plan(opt);
+  if (!plan) return 2;
+  const bool coupled = plan->coupled;
+  const std::string name = plan->name;
+  const LaunchOptions eff = plan->eff;
   const fs::path out = opt.out.empty() ? fs::path("runs") / name : opt.out;
   // The endpoint before the run directory: a run that cannot start leaves no directory behind.
   const std::string token = make_token();

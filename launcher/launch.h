@@ -25,6 +25,8 @@ struct LaunchOptions {
 // Runs to completion; returns 0, or the failing process's exit code (1 when that is 0), 2 for bad input,
 // 130 when interrupted. Messages go to stderr.
 int run(const LaunchOptions& opt);
+// cosim check: the scene read and checked as run() does before it starts anything; 0 when valid, else 2.
+int check(const LaunchOptions& opt);
 
 // ipc://<dir>/coupler.sock, or ipc:///tmp/cosim-XXXXXX/coupler.sock (a private directory made for it) when that
 // path is too long for a socket name.
@@ -33,7 +35,9 @@ std::string ipc_endpoint(const std::filesystem::path& dir);
 std::string tcp_endpoint(const std::string& host);
 // 32 random hex digits.
 std::string make_token();
-// Splits a command line on spaces (no quoting).
+// Splits a command line into words as a POSIX shell does for plain words: blanks separate them, '...' is literal,
+// "..." keeps blanks (\" and \\ escaped), a backslash escapes the next character; no expansion. Throws
+// std::runtime_error on an unclosed quote.
 std::vector<std::string> split_command(const std::string& cmd);
 
 }  // namespace cosim::launcher

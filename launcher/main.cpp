@@ -32,10 +32,19 @@ int main(int argc, char** argv) {
   run->add_option("--progress-every", o.progress_every,
                   "seconds between progress lines when stderr is not a terminal (a log), default 30")
       ->check(CLI::PositiveNumber);
+  auto* chk = app.add_subcommand("check", "check a scene as a run would read it, without running or writing anything");
+  cosim::launcher::LaunchOptions co;
+  chk->add_option("scene", co.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  chk->add_option("--set", co.overrides, "override a scene value: key.path=value (repeatable)");
+  chk->footer(
+      "Examples:\n"
+      "  cosim check configs/shock_panel_2d.yaml           every section as its program reads it; exit 0 or 2\n"
+      "  cosim check configs/piston_2d.yaml --set coupling.time.end=1e-3");
   app.footer(
       "Examples:\n"
       "  cosim run configs/piston_2d.yaml                  coupled run into runs/<scene name>\n"
       "  cosim run configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]'\n"
+      "  cosim check configs/piston_2d.yaml                the scene checked, nothing run\n"
       "  cosim run --help                                  the options of a run");
   run->footer(
       "Examples:\n"
@@ -65,11 +74,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }
+  std::error_code ec;
+  auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path bin_dir = ec ? std::filesystem::path(argv[0]).parent_path() : self.parent_path();
+  if (chk->parsed()) {
+    co.bin_dir = bin_dir;
+    return cosim::launcher::check(co);
+  }
   o.tcp = tcp->count() > 0;
   if (o.tcp && o.tcp_host.empty()) o.tcp_host = "127.0.0.1";
   o.out = out;
-  std::error_code ec;
-  auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  o.bin_dir = ec ? std::filesystem::path(argv[0]).parent_path() : self.parent_path();
+  o.bin_dir = bin_dir;
   return cosim::launcher::run(o);
 }

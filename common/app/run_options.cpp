@@ -16,7 +16,10 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   CLI::App app{name + ": " + description};
   app.footer("Examples:\n" + examples);
   app.add_option("scene", opt.scene_file, "scene file (YAML)")->required();
-  app.add_option("--out", opt.out_dir, "output directory (created if missing)")->required();
+  app.add_option("--out", opt.out_dir, "output directory (created if missing; required unless --check)");
+  app.add_flag("--check", opt.check,
+               "validate the scene and the files it names as a run would read them, run nothing, write nothing: "
+               "exit 0 when it can run, 2 with the first error");
   app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");
   app.add_flag("--quiet,-q", opt.quiet, "no progress line");
   app.add_option("--threads", opt.threads,
@@ -37,6 +40,11 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  }
+  if (opt.out_dir.empty() && !opt.check) {
+    std::cerr << name << ": --out is required (the output directory; or --check to validate the scene only)\n"
+              << "Run with --help for more information.\n";
+    return 2;
   }
   if (opt.token.empty()) opt.token = token_from_environment();
   spdlog::set_default_logger(spdlog::stderr_color_mt(name));  // stdout stays free for data

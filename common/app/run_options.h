@@ -1,5 +1,6 @@
 // Command line of a standalone solver run and the steps every run starts with.
 //   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N] [--coupler EP --token T]
+//   NAME SCENE.yaml --check [--set key.path=value ...]
 #pragma once
 
 #include <spdlog/spdlog.h>
@@ -21,6 +22,7 @@ struct RunOptions {
   int threads = 0;      // 0: scene value / OpenMP default
   std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
   std::string token;    // per-run token of a coupled run (--token, else $COSIM_TOKEN)
+  bool check = false;   // --check: validate the scene and the files it names, run nothing, write nothing
   bool coupled() const { return !coupler.empty(); }
   // The scene as messages name it: the user's file, also when the solver reads cosim run's copy.
   std::string scene_name() const { return config::scene_name(scene_file); }

@@ -73,6 +73,11 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 }
 
 int run_fluid(const RunOptions& opt) {
+  if (opt.check) {  // the scene as a run reads it (its memory need included), nothing allocated or written
+    if (!app::load_scene<FluidScene>(opt, load_fluid_scene)) return 2;
+    spdlog::info("{}: the fluid's part of the scene is valid", opt.scene_name());
+    return 0;
+  }
   if (opt.coupled()) return run_fluid_coupled(opt);
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;

@@ -89,6 +89,18 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
 }
 
 int run_solid(const RunOptions& opt) {
+  if (opt.check) {  // the scene and its mesh as a run sets them up, nothing written
+    auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
+    if (!loaded) return 2;
+    try {
+      Simulation sim(*loaded);
+    } catch (const std::exception& e) {
+      spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_name(), e.what());
+      return 2;
+    }
+    spdlog::info("{}: the solid's part of the scene is valid", opt.scene_name());
+    return 0;
+  }
   if (opt.coupled()) return run_solid_coupled(opt);
   SolidRun run = prepare_solid_run(opt);
   if (!run.sim) return run.exit_code;

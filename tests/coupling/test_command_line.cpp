@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "coupling_test_util.h"
+#include "launcher/launch.h"
 
 using namespace cosim::test;
 
@@ -71,3 +74,14 @@ TEST(CommandLine, HelpEndsWithExamples) {
 }
 
 }  // namespace
+
+// Commands (--fluid-exe, a scene's launcher: keys) are split into words as a shell splits plain words: quotes keep
+// blanks, a backslash escapes; an unclosed quote is refused.
+TEST(CommandLine, CommandsAreSplitWithQuotesAsAShellDoes) {
+  using cosim::launcher::split_command;
+  EXPECT_EQ(split_command("  a  b\tc "), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_EQ(split_command("python3 '/my dir/solid.py' --name \"x y\" z\\ w"),
+            (std::vector<std::string>{"python3", "/my dir/solid.py", "--name", "x y", "z w"}));
+  EXPECT_EQ(split_command(R"(a "q\"uote" 'it''s' "")"), (std::vector<std::string>{"a", "q\"uote", "its", ""}));
+  EXPECT_THROW(split_command("python3 'unclosed"), std::runtime_error);
+}

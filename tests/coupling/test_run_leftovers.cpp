@@ -20,9 +20,12 @@ TEST(RunLeftovers, ARunThatCannotStartLeavesNoRunDirectory) {
   const fs::path dir = test_dir("leftover_nostart");
   const fs::path scene = write_scene(dir, "  time: {end: 1.0}\n");
   const fs::path run = dir / "run";
-  const int rc =
-      run_command(bin("cosim").string() + " run " + scene.string() + " --out " + run.string() + " --tcp not-an-address",
-                  dir / "cosim.log");
+  // (scripted solvers: the scene's fluid and solid sections are placeholders the real solvers' checks refuse)
+  const std::string peers = " --fluid-exe '" + bin("cosim_scripted_peer").string() + " --role fluid' --solid-exe '" +
+                            bin("cosim_scripted_peer").string() + " --role solid'";
+  const int rc = run_command(
+      bin("cosim").string() + " run " + scene.string() + " --out " + run.string() + " --tcp not-an-address" + peers,
+      dir / "cosim.log");
   EXPECT_EQ(rc, 2);
   EXPECT_NE(read_file(dir / "cosim.log").find("--tcp not-an-address: not an IPv4 address"), std::string::npos)
       << read_file(dir / "cosim.log");

@@ -1,0 +1,35 @@
+// The whole scene checked before anything starts: each of the run's own programs (coupler, fluid_solver,
+// solid_solver next to cosim) reads it with --check, as its run would, in the order that names the root cause
+// first (the coupling section, which the solvers' time keys depend on, before the solvers' sections). A program
+// that the scene or the command line replaces is not asked (it need not know --check).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cosim::launcher {
+
+struct SceneRefusal {
+  std::string program;  // "coupler", "fluid_solver", "solid_solver"
+  int exit_code = 0;
+  std::string message;  // what it printed
+};
+
+struct SceneCheck {
+  std::string scene;
+  std::vector<std::string> overrides;
+  bool coupled = false;
+  std::filesystem::path bin_dir;
+  bool check_fluid = true, check_solid = true, check_coupler = true;  // false: a replaced program
+};
+
+// The first program that refuses the scene, with its message; nothing when all accept it.
+std::optional<SceneRefusal> check_scene(const SceneCheck& c);
+
+// Runs argv (no shell) with stdout and stderr captured; its exit code (128 + N when killed by signal N), -1 when it
+// could not be started. Killed after `timeout` seconds.
+int run_captured(const std::vector<std::string>& argv, std::string& output, double timeout);
+
+}  // namespace cosim::launcher

@@ -1,0 +1,67 @@
+// The whole scene is checked before a run starts anything: each of the run's programs reads it with --check, the
+// coupling section first, so that a mistake there is named as such (a typo in coupling.time was reported as
+// fluid.time.end missing by whichever solver failed first) and no run directory is made. `cosim check` runs the
+// same checks and writes nothing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <utility>
+
+#include "coupling_test_util.h"
+
+using namespace cosim::test;
+
+namespace {
+
+std::pair<int, std::string> run_exe(const fs::path& dir, const std::string& cmd) {
+  const fs::path log = dir / "out.log";
+  const int rc = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_file(log)};
+}
+
+// configs/piston_2d.yaml with `from` replaced by `to`.
+fs::path edited_scene(const fs::path& dir, const std::string& from, const std::string& to) {
+  std::string s = read_file(fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml");
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  const fs::path p = dir / "scene.yaml";
+  std::ofstream(p) << s;
+  return p;
+}
+
+}  // namespace
+
+TEST(SceneCheck, ATypoInTheCouplingSectionIsNamedBeforeAnythingStarts) {
+  const fs::path dir = test_dir("check_typo");
+  const fs::path scene = edited_scene(dir, "  time: {end: 0.37}", "  timd: {end: 0.37}");
+  const fs::path run = dir / "run";
+  auto [rc, log] = run_exe(dir, bin("cosim").string() + " run " + scene.string() + " --out " + run.string());
+  EXPECT_EQ(rc, 2) << log;
+  EXPECT_NE(log.find("coupler refuses the scene (nothing was started)"), std::string::npos) << log;
+  EXPECT_NE(log.find("coupling.time: expected a section, but the key is missing (did you mean 'timd', given at line"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("fluid.time"), std::string::npos) << log;  // not the solvers' consequence of it
+  EXPECT_FALSE(fs::exists(run));
+}
+
+TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNothing) {
+  const fs::path dir = test_dir("check_cmd");
+  const std::string cosim = bin("cosim").string(),
+                    piston = (fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml").string();
+  auto [ok, out] = run_exe(dir, cosim + " check " + piston);
+  EXPECT_EQ(ok, 0) << out;
+  EXPECT_NE(out.find("valid; a coupled run"), std::string::npos) << out;
+  auto [bad, err] = run_exe(dir, cosim + " check " + piston + " --set solid.blocks.0.density=-1");
+  EXPECT_EQ(bad, 2) << err;
+  EXPECT_NE(err.find("solid_solver refuses the scene"), std::string::npos) << err;
+  EXPECT_NE(err.find("solid.blocks.0.density"), std::string::npos) << err;
+  // Each program answers --check alone too, with nothing written.
+  for (const char* exe : {"coupler", "fluid_solver", "solid_solver"}) {
+    auto [rc, text] = run_exe(dir, bin(exe).string() + " " + piston + " --check");
+    EXPECT_EQ(rc, 0) << exe << ": " << text;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);  // out.log only
+}
