@@ -92,8 +92,10 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  if (check) {
-    spdlog::info("{}: the coupling section of the scene is valid", scene);
+  if (check) {  // the plan line cosim check prints
+    std::cout << fmt::format("coupler: {} interface conditions, {} cycle, end time {:g} s, {} output time(s)\n",
+                             coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.t_end,
+                             cfg.output_times.size());
     return 0;
   }
   if (endpoint.empty()) {

@@ -140,6 +140,7 @@ struct ScenePlan {
   bool coupled = false;
   std::string name;
   LaunchOptions eff;
+  std::vector<std::string> lines;  // what each checked program will do
 };
 std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
   ScenePlan plan;
@@ -194,7 +195,7 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
                       eff.fluid_cmd.empty(),
                       eff.solid_cmd.empty(),
                       eff.coupler_cmd.empty()};
-  if (const auto refusal = check_scene(sc)) {
+  if (const auto refusal = check_scene(sc, &plan.lines)) {
     std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
                              refusal->message);
     return std::nullopt;
@@ -208,6 +209,12 @@ int check(const LaunchOptions& opt) {
   if (!plan) return 2;
   std::cout << fmt::format("{}: valid; a {} run of {}\n", opt.scene, plan->coupled ? "coupled" : "fluid-only",
                            plan->coupled ? "the fluid, the solid and the coupler" : "the fluid");
+  for (const auto& l : plan->lines) std::cout << "  " << l << "\n";
+  for (const auto& [role, cmd] : {std::pair<const char*, const std::string&>{"fluid", plan->eff.fluid_cmd},
+                                  {"solid", plan->eff.solid_cmd},
+                                  {"coupler", plan->eff.coupler_cmd}})
+    if (!cmd.empty() && (plan->coupled || std::string(role) == "fluid"))
+      std::cout << fmt::format("  {}: the scene's own program (not checked): {}\n", role, cmd);
   return 0;
 }
 

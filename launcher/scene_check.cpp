@@ -53,7 +53,7 @@ int run_captured(const std::vector<std::string>& argv, std::string& output, doub
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::optional<SceneRefusal> check_scene(const SceneCheck& c) {
+std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan) {
   std::vector<std::string> programs;
   if (c.coupled && c.check_coupler) programs.push_back("coupler");
   if (c.check_fluid) programs.push_back("fluid_solver");
@@ -67,6 +67,8 @@ std::optional<SceneRefusal> check_scene(const SceneCheck& c) {
       while (!out.empty() && out.back() == '\n') out.pop_back();
       return SceneRefusal{p, rc, rc == 127 && out.empty() ? "cannot execute " + argv[0] : out};
     }
+    while (!out.empty() && out.back() == '\n') out.pop_back();
+    if (plan && !out.empty()) plan->push_back(out);
   }
   return std::nullopt;
 }

@@ -25,8 +25,9 @@ struct SceneCheck {
   bool check_fluid = true, check_solid = true, check_coupler = true;  // false: a replaced program
 };
 
-// The first program that refuses the scene, with its message; nothing when all accept it.
-std::optional<SceneRefusal> check_scene(const SceneCheck& c);
+// The first program that refuses the scene, with its message; nothing when all accept it. `plan` gets what each
+// program that accepts it says it will do (one line each: cells, elements, memory, ...).
+std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan = nullptr);
 
 // Runs argv (no shell) with stdout and stderr captured; its exit code (128 + N when killed by signal N), -1 when it
 // could not be started. Killed after `timeout` seconds.

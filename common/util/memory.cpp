@@ -19,7 +19,8 @@ std::size_t available_memory_bytes() {
 
 std::string format_bytes(double bytes) {
   if (bytes >= 1024.0 * 1024.0 * 1024.0) return fmt::format("{:.1f} GiB", bytes / (1024.0 * 1024.0 * 1024.0));
-  return fmt::format("{:.0f} MiB", bytes / (1024.0 * 1024.0));
+  if (bytes >= 1024.0 * 1024.0) return fmt::format("{:.0f} MiB", bytes / (1024.0 * 1024.0));
+  return fmt::format("{:.0f} KiB", bytes / 1024.0);
 }
 
 }  // namespace cosim::util

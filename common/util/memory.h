@@ -10,7 +10,7 @@ namespace cosim::util {
 // MemAvailable of /proc/meminfo in bytes; 0 where it cannot be read (the check is then skipped).
 std::size_t available_memory_bytes();
 
-// "12.3 GiB"
+// "12.3 GiB", "727 MiB", "12 KiB"
 std::string format_bytes(double bytes);
 
 }  // namespace cosim::util

@@ -1,5 +1,10 @@
 #include "fluid_solver/app/runner.h"
 
+#include <iostream>
+
+#include "common/util/memory.h"
+#include "fluid_solver/core/memory_estimate.h"
+
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -74,8 +79,22 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 
 int run_fluid(const RunOptions& opt) {
   if (opt.check) {  // the scene as a run reads it (its memory need included), nothing allocated or written
-    if (!app::load_scene<FluidScene>(opt, load_fluid_scene)) return 2;
-    spdlog::info("{}: the fluid's part of the scene is valid", opt.scene_name());
+    const auto s = app::load_scene<FluidScene>(opt, load_fluid_scene);
+    if (!s) return 2;
+    double cells = 1;
+    std::string shape;
+    for (int d = 0; d < s->dim; ++d) {
+      cells *= s->cells[d];
+      shape += (d ? " x " : "") + std::to_string(s->cells[d]);
+    }
+    std::string names;
+    for (const auto& ph : s->phases) names += (names.empty() ? "" : ", ") + ph.name;
+    // The plan line cosim check prints.
+    std::cout << fmt::format(
+        "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}\n", s->dim, shape, cells,
+        s->num_phases(), names, s->exchange.dispersed ? ", the second dispersed" : "", to_string(s->flux),
+        util::format_bytes(static_cast<double>(estimated_state_bytes(*s))),
+        s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()));
     return 0;
   }
   if (opt.coupled()) return run_fluid_coupled(opt);

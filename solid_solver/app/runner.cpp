@@ -1,5 +1,9 @@
 #include "solid_solver/app/runner.h"
 
+#include <iostream>
+
+#include "common/util/memory.h"
+
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -94,11 +98,18 @@ int run_solid(const RunOptions& opt) {
     if (!loaded) return 2;
     try {
       Simulation sim(*loaded);
+      const Mesh& m = sim.mesh();
+      // The plan line cosim check prints.
+      const double dt = sim.stable_dt();
+      std::cout << fmt::format("solid: {}D, {} elements, {} nodes, {} block(s), state about {}, {}\n", m.dim,
+                               m.num_elements, m.num_nodes, loaded->blocks.size(),
+                               util::format_bytes(sim.bytes_per_element() * m.num_elements),
+                               dt < 1e100 ? fmt::format("first stable step {:.3g} s", dt)
+                                          : std::string("rigid bodies only (no step limit of its own)"));
     } catch (const std::exception& e) {
       spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_name(), e.what());
       return 2;
     }
-    spdlog::info("{}: the solid's part of the scene is valid", opt.scene_name());
     return 0;
   }
   if (opt.coupled()) return run_solid_coupled(opt);

@@ -54,6 +54,12 @@ TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNot
   auto [ok, out] = run_exe(dir, cosim + " check " + piston);
   EXPECT_EQ(ok, 0) << out;
   EXPECT_NE(out.find("valid; a coupled run"), std::string::npos) << out;
+  // the plan: what each program will do
+  EXPECT_NE(out.find("coupler: impedance interface conditions"), std::string::npos) << out;
+  EXPECT_NE(out.find("fluid: 2D, 160 x 8 cells (1280), 1 phase(s) (gas), aufs flux, state about"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("solid: 2D, 8 elements, 15 nodes, 1 block(s)"), std::string::npos) << out;
+  EXPECT_NE(out.find("rigid bodies only"), std::string::npos) << out;
   auto [bad, err] = run_exe(dir, cosim + " check " + piston + " --set solid.blocks.0.density=-1");
   EXPECT_EQ(bad, 2) << err;
   EXPECT_NE(err.find("solid_solver refuses the scene"), std::string::npos) << err;
