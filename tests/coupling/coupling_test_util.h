@@ -2,6 +2,8 @@
 // launcher/process.h, logs read back.
 #pragma once
 
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "launcher/process.h"
@@ -110,6 +113,13 @@ inline int pid_with_arguments(const std::vector<std::string>& texts) {
     if (all) return std::stoi(name);
   }
   return 0;
+}
+
+// Exit code and output (stdout and stderr together) of a shell command, its output kept in dir/out.log.
+inline std::pair<int, std::string> run_shell(const fs::path& dir, const std::string& cmd) {
+  const fs::path log = dir / "out.log";
+  const int rc = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_file(log)};
 }
 
 // True when some process's command line contains `text` (no process may be left running).

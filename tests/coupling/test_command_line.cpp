@@ -15,44 +15,37 @@ using namespace cosim::test;
 
 namespace {
 
-// Exit code and the output of a command (stdout and stderr together).
-std::pair<int, std::string> run_exe(const fs::path& dir, const std::string& cmd) {
-  const fs::path log = dir / "out.log";
-  const int rc = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_file(log)};
-}
-
 TEST(CommandLine, CosimNamesAnOptionBeforeTheCommandAndAMissingCommand) {
   const fs::path dir = test_dir("cli_order");
   const std::string cosim = bin("cosim").string();
-  auto [rc, log] = run_exe(dir, cosim);
+  auto [rc, log] = run_shell(dir, cosim);
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("cosim: a command is required: cosim run SCENE.yaml [options]"), std::string::npos) << log;
-  std::tie(rc, log) = run_exe(dir, cosim + " --output x run s.yaml");
+  std::tie(rc, log) = run_shell(dir, cosim + " --output x run s.yaml");
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("cosim: unknown option '--output' (did you mean '--out'?); options follow the command"),
             std::string::npos)
       << log;
-  std::tie(rc, log) = run_exe(dir, cosim + " run --version");  // the version is known after the command too
+  std::tie(rc, log) = run_shell(dir, cosim + " run --version");  // the version is known after the command too
   EXPECT_EQ(rc, 0) << log;
   EXPECT_EQ(log.rfind("cosim 0.", 0), 0u) << log;
-  std::tie(rc, log) = run_exe(dir, cosim + " --out x run s.yaml");
+  std::tie(rc, log) = run_shell(dir, cosim + " --out x run s.yaml");
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("cosim: '--out' is an option of 'run': cosim run SCENE.yaml --out ..."), std::string::npos) << log;
 }
 
 TEST(CommandLine, ASingleDashOptionIsNamedWithTheLongOneItAbbreviates) {
   const fs::path dir = test_dir("cli_dash");
-  auto [rc, log] = run_exe(dir, bin("cosim").string() + " run s.yaml -o x");
+  auto [rc, log] = run_shell(dir, bin("cosim").string() + " run s.yaml -o x");
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("cosim: unknown option '-o' (did you mean '--out'?)"), std::string::npos) << log;
-  std::tie(rc, log) = run_exe(dir, bin("cosim").string() + " run s.yaml -out x");
+  std::tie(rc, log) = run_shell(dir, bin("cosim").string() + " run s.yaml -out x");
   EXPECT_NE(log.find("cosim: unknown option '-out' (did you mean '--out'?)"), std::string::npos) << log;
-  std::tie(rc, log) = run_exe(dir, bin("fluid_solver").string() + " s.yaml -q -o x");  // -q is --quiet
+  std::tie(rc, log) = run_shell(dir, bin("fluid_solver").string() + " s.yaml -q -o x");  // -q is --quiet
   EXPECT_EQ(rc, 2);
   EXPECT_NE(log.find("fluid_solver: unknown option '-o' (did you mean '--out'?)"), std::string::npos) << log;
   // a negative number is a value, not an option
-  std::tie(rc, log) = run_exe(dir, bin("cosim").string() + " run s.yaml --progress-every -5");
+  std::tie(rc, log) = run_shell(dir, bin("cosim").string() + " run s.yaml --progress-every -5");
   EXPECT_EQ(log.find("unknown option"), std::string::npos) << log;
 }
 
@@ -60,7 +53,7 @@ TEST(CommandLine, HelpEndsWithExamples) {
   const fs::path dir = test_dir("cli_help");
   for (const std::string cmd :
        {"cosim --help", "cosim run --help", "fluid_solver --help", "solid_solver --help", "coupler --help"}) {
-    const auto [rc, log] = run_exe(dir, (fs::path(COSIM_BINARY_DIR) / "bin").string() + "/" + cmd);
+    const auto [rc, log] = run_shell(dir, (fs::path(COSIM_BINARY_DIR) / "bin").string() + "/" + cmd);
     EXPECT_EQ(rc, 0) << cmd;
     const auto at = log.find("\nExamples:\n");
     ASSERT_NE(at, std::string::npos) << cmd << "\n" << log;

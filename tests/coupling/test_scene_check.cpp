@@ -14,12 +14,6 @@ using namespace cosim::test;
 
 namespace {
 
-std::pair<int, std::string> run_exe(const fs::path& dir, const std::string& cmd) {
-  const fs::path log = dir / "out.log";
-  const int rc = std::system((cmd + " > " + log.string() + " 2>&1").c_str());
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_file(log)};
-}
-
 // configs/piston_2d.yaml with `from` replaced by `to`.
 fs::path edited_scene(const fs::path& dir, const std::string& from, const std::string& to) {
   std::string s = read_file(fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml");
@@ -37,7 +31,7 @@ TEST(SceneCheck, ATypoInTheCouplingSectionIsNamedBeforeAnythingStarts) {
   const fs::path dir = test_dir("check_typo");
   const fs::path scene = edited_scene(dir, "  time: {end: 0.37}", "  timd: {end: 0.37}");
   const fs::path run = dir / "run";
-  auto [rc, log] = run_exe(dir, bin("cosim").string() + " run " + scene.string() + " --out " + run.string());
+  auto [rc, log] = run_shell(dir, bin("cosim").string() + " run " + scene.string() + " --out " + run.string());
   EXPECT_EQ(rc, 2) << log;
   EXPECT_NE(log.find("coupler refuses the scene (nothing was started)"), std::string::npos) << log;
   EXPECT_NE(log.find("coupling.time: expected a section, but the key is missing (did you mean 'timd', given at line"),
@@ -51,7 +45,7 @@ TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNot
   const fs::path dir = test_dir("check_cmd");
   const std::string cosim = bin("cosim").string(),
                     piston = (fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml").string();
-  auto [ok, out] = run_exe(dir, cosim + " check " + piston);
+  auto [ok, out] = run_shell(dir, cosim + " check " + piston);
   EXPECT_EQ(ok, 0) << out;
   EXPECT_NE(out.find("valid; a coupled run"), std::string::npos) << out;
   // the plan: what each program will do
@@ -60,13 +54,13 @@ TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNot
       << out;
   EXPECT_NE(out.find("solid: 2D, 8 elements, 15 nodes, 1 block(s)"), std::string::npos) << out;
   EXPECT_NE(out.find("rigid bodies only"), std::string::npos) << out;
-  auto [bad, err] = run_exe(dir, cosim + " check " + piston + " --set solid.blocks.0.density=-1");
+  auto [bad, err] = run_shell(dir, cosim + " check " + piston + " --set solid.blocks.0.density=-1");
   EXPECT_EQ(bad, 2) << err;
   EXPECT_NE(err.find("solid_solver refuses the scene"), std::string::npos) << err;
   EXPECT_NE(err.find("solid.blocks.0.density"), std::string::npos) << err;
   // Each program answers --check alone too, with nothing written.
   for (const char* exe : {"coupler", "fluid_solver", "solid_solver"}) {
-    auto [rc, text] = run_exe(dir, bin(exe).string() + " " + piston + " --check");
+    auto [rc, text] = run_shell(dir, bin(exe).string() + " " + piston + " --check");
     EXPECT_EQ(rc, 0) << exe << ": " << text;
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);  // out.log only
