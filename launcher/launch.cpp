@@ -234,15 +234,18 @@ int run(const LaunchOptions& opt) {
     std::cerr << "cosim: " << e.what() << "\n";
     return 2;
   }
-  // A private socket directory made for a long run-directory path goes when the run ends, however it ends.
-  struct SocketDir {
-    fs::path dir;
-    ~SocketDir() {
+  // The coupler's ipc socket file is removed however the run ends (zmq leaves it behind), and with it the private
+  // directory made for it when the run directory's path is too long for a socket name.
+  struct SocketCleanup {
+    fs::path file, dir;
+    ~SocketCleanup() {
       std::error_code ignored;
+      if (!file.empty()) fs::remove(file, ignored);
       if (!dir.empty()) fs::remove_all(dir, ignored);
     }
-  } socket_dir;
-  if (endpoint.rfind("ipc:///tmp/cosim-", 0) == 0) socket_dir.dir = fs::path(endpoint.substr(6)).parent_path();
+  } socket_cleanup;
+  if (endpoint.rfind("ipc://", 0) == 0) socket_cleanup.file = endpoint.substr(6);
+  if (endpoint.rfind("ipc:///tmp/cosim-", 0) == 0) socket_cleanup.dir = socket_cleanup.file.parent_path();
   std::error_code ec;
   const bool fresh = !fs::exists(out, ec);
   fs::create_directories(out, ec);
@@ -273,15 +276,6 @@ int run(const LaunchOptions& opt) {
     if (fresh) fs::remove_all(out, ignored);  // this run made it (and holds its lock): nothing of it is kept
     return 2;
   }
-
-  // The coupler's ipc socket file is removed however the run ends (zmq leaves it behind).
-  struct SocketFile {
-    fs::path path;
-    ~SocketFile() {
-      std::error_code ignored;
-      if (!path.empty()) fs::remove(path, ignored);
-    }
-  } socket_file{endpoint.rfind("ipc://", 0) == 0 ? fs::path(endpoint.substr(6)) : fs::path()};
 
   const auto command = [&](const std::string& given, const char* exe) {
     std::vector<std::string> argv = split_command(given);

@@ -16,11 +16,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <thread>
 
+#include "common/app/run_options.h"
 #include "common/coupling/client.h"
 #include "common/coupling/scene_hash.h"
 
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   long hang_after = -1;
   app.add_option("--hang-after", hang_after, "cycles after which it stops answering (heartbeats go on)");
   CLI11_PARSE(app, argc, argv);
-  if (token.empty() && std::getenv("COSIM_TOKEN")) token = std::getenv("COSIM_TOKEN");  // as cosim run passes it
+  if (token.empty()) token = cosim::app::token_from_environment();  // as cosim run passes it
   const std::string tag = "[scripted-" + role + "] ";
   try {
     ClientOptions o;

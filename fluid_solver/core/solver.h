@@ -273,9 +273,12 @@ class Solver final : public FluidSimulation {
       if (k == 1 && gran_) return U.var(Lay::heat)[c];
     return U.var(Lay::energy(k))[c] - kinetic(U, k, c);
   }
-  // k = (alpha rho E - alpha rho e) / (alpha rho) - u^2/2 of the dispersed phase (docs/methods.md §2.9).
+  // alpha rho k = alpha rho E - kinetic - alpha rho e of the dispersed phase (docs/methods.md §2.9), and k.
+  double granular_energy(const FieldArray& U, std::size_t c) const {
+    return U.var(Lay::energy(NP - 1))[c] - kinetic(U, NP - 1, c) - U.var(Lay::heat)[c];
+  }
   double granular_per_mass(const FieldArray& U, std::size_t c) const {
-    return (U.var(Lay::energy(NP - 1))[c] - kinetic(U, NP - 1, c) - U.var(Lay::heat)[c]) / U.var(Lay::mass(NP - 1))[c];
+    return granular_energy(U, c) / U.var(Lay::mass(NP - 1))[c];
   }
   // The fastest wave of a dispersed phase: its compaction waves, or the sound of its granular gas.
   double dispersed_wave_speed(double a, double rho, const double* const* Wp, std::size_t c) const {
@@ -645,7 +648,7 @@ class Solver final : public FluidSimulation {
         [&](std::size_t base, int len, double&) {
           for (int i = 0; i < len; ++i) {
             const std::size_t c = base + i;
-            const double G = gran_ ? U_.var(Lay::energy(NP - 1))[c] - kinetic(U_, NP - 1, c) - U_.var(Lay::heat)[c] : 0;
+            const double G = gran_ ? granular_energy(U_, c) : 0.0;
             CellState2 s = load_cell(c);
             s.E[NP - 1] -= G;  // drag and heat exchange see the material's energy
             const double beta = drag ? apply_drag(s, eos_, ex, DIM, dt) : 0.0;

@@ -34,6 +34,23 @@ struct ThreeProcs {
   std::string log(int i) const { return read_file(cs[i].log); }
 };
 
+// A coupler alone, waiting for its solvers, and a stranger's connection to it (a Dealer socket).
+struct CouplerAndStranger {
+  fs::path dir, scene;
+  std::string ep;
+  std::vector<Child> cs;  // the coupler
+  coupling::ZmqContext ctx;
+  coupling::ZmqSocket stranger{ctx, coupling::ZmqSocket::Type::Dealer};
+  CouplerAndStranger(const std::string& name, const std::string& coupling) {
+    dir = test_dir(name);
+    scene = write_scene(dir, coupling);
+    ep = "ipc://" + (dir / "c.sock").string();
+    cs.push_back(child("coupler", coupler_args(ep, scene, dir / "out"), dir));
+    launcher::start(cs[0]);
+    stranger.connect(ep);
+  }
+};
+
 // After whatever a stranger did, the run's own solvers connect and the run completes: every process exits 0.
 void expect_own_run_completes(std::vector<Child> cs, const fs::path& dir, const std::string& ep,
                               const fs::path& scene) {
@@ -98,41 +115,27 @@ TEST(CouplingProcesses, WrongTokenIsAStrangerRefusedAndSceneHashEndsTheStart) {
 }
 
 TEST(CouplingProcesses, MalformedBytesGetAnErrorReplyAndNoCrash) {
-  const fs::path dir = test_dir("malformed");
-  const fs::path scene = write_scene(dir, kShort);
-  const std::string ep = "ipc://" + (dir / "c.sock").string();
-  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out"), dir)};
-  launcher::start(cs[0]);
-  coupling::ZmqContext ctx;
-  coupling::ZmqSocket s(ctx, coupling::ZmqSocket::Type::Dealer);
-  s.connect(ep);
-  ASSERT_TRUE(s.send({std::string("\xff\xff garbage \x01", 12)}));
+  CouplerAndStranger r("malformed", kShort);
+  ASSERT_TRUE(r.stranger.send({std::string("\xff\xff garbage \x01", 12)}));
   coupling::Frames f;
-  ASSERT_TRUE(s.receive(f, 5000)) << "no Error reply";
+  ASSERT_TRUE(r.stranger.receive(f, 5000)) << "no Error reply";
   std::string why;
   auto e = coupling::decode(f.at(0), why);
   ASSERT_TRUE(e.has_value()) << why;
   ASSERT_TRUE(e->has_error());
   EXPECT_NE(e->error().reason().find("malformed message (12 bytes)"), std::string::npos) << e->error().reason();
   // A stranger's garbage does not end the run: the solvers can still connect and finish.
-  expect_own_run_completes(cs, dir, ep, scene);
+  expect_own_run_completes(r.cs, r.dir, r.ep, r.scene);
 }
 
 // A message larger than coupling.max_message_mb never reaches the coupler's memory: libzmq drops the connection
 // that sends it, the sender gets no answer, and the run goes on with its own solvers.
 TEST(CouplingProcesses, AnOversizedMessageDropsOnlyItsConnection) {
-  const fs::path dir = test_dir("oversized");
-  const fs::path scene = write_scene(dir, std::string(kShort) + "  max_message_mb: 1\n");
-  const std::string ep = "ipc://" + (dir / "c.sock").string();
-  std::vector<Child> cs{child("coupler", coupler_args(ep, scene, dir / "out"), dir)};
-  launcher::start(cs[0]);
-  coupling::ZmqContext ctx;
-  coupling::ZmqSocket s(ctx, coupling::ZmqSocket::Type::Dealer);
-  s.connect(ep);
-  ASSERT_TRUE(s.send({std::string(3u << 20, 'x')}));
+  CouplerAndStranger r("oversized", std::string(kShort) + "  max_message_mb: 1\n");
+  ASSERT_TRUE(r.stranger.send({std::string(3u << 20, 'x')}));
   coupling::Frames f;
-  EXPECT_FALSE(s.receive(f, 1000)) << "the coupler answered a 3 MB message";
-  expect_own_run_completes(cs, dir, ep, scene);
+  EXPECT_FALSE(r.stranger.receive(f, 1000)) << "the coupler answered a 3 MB message";
+  expect_own_run_completes(r.cs, r.dir, r.ep, r.scene);
 }
 
 // The coupler keeps what a solver sends ahead of the cycle (a pipelined solid's faces and proposal) in that
