@@ -10,9 +10,11 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   Node root = load_file(file, overrides);
   Node n = root.child("coupling");
   CouplerConfig c;
-  const std::string mode = n.get<std::string>("mode", "impedance", one_of({"impedance", "standard", "characteristic"}));
+  const std::string mode =
+      n.get<std::string>("mode", "impedance", one_of({"robin", "impedance", "characteristic", "standard"}));
   c.mode = mode == "standard"         ? coupling::Mode::Standard
            : mode == "characteristic" ? coupling::Mode::Characteristic
+           : mode == "robin"          ? coupling::Mode::Robin
                                       : coupling::Mode::Impedance;
   c.scheme = n.get<std::string>("scheme", "pipelined", one_of({"pipelined", "sequential"})) == "sequential"
                  ? coupling::Scheme::Sequential

@@ -38,7 +38,8 @@ double choose_dt(double proposal_min, double dt_max, double t, double t_next_out
 namespace {
 
 struct Loop {
-  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir) : cfg(c), hub(h), history(dir) {}
+  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir)
+      : cfg(c), hub(h), history(dir), predictor(c.mode == coupling::Mode::Robin) {}
   const CouplerConfig& cfg;
   Hub& hub;
   History history;
@@ -127,6 +128,7 @@ struct Loop {
       e.mutable_states()->clear_face_pressure();
       e.mutable_states()->clear_face_normal_velocity();
       e.mutable_states()->clear_face_wetted();
+      e.mutable_states()->clear_face_impedance();
       return e;
     });
     hub.send(Role::Fluid, to_fluid);

@@ -6,6 +6,9 @@
 //   characteristic (eqs. 17, 19): v_I = ... + (sigma_f - sigma_s)/(z_f+z_s),     p_I = ... - z_f w_s (v_f - v_s)
 //   standard:                     v_I = v_s (fluid gets the wall velocity),     p_I = p_f (solid gets the fluid
 //   pressure)
+//   robin:                        v_I = v_s,                                    p_I = p_f - z_f (v_f - v_s)
+//     and the solid gets face_impedance Z = sum_k alpha_k z_k / sum_k alpha_k with the face pressure: it applies
+//     p_I + Z (v - v_s) at the normal velocity v its boundary reaches in its next step, implicitly (methods §4.4)
 // with p_s = -sigma_s. The solid gets the volume average over phases (paper section 8, step 1):
 //   face_pressure = sum_k alpha_k p_I,k / sum_k alpha_k, face_normal_velocity likewise.
 // Unwetted faces (no fluid next to them): per phase v_I = v_s, p_I = p_s; face_pressure = 0 (no load).

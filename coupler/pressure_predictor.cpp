@@ -3,7 +3,7 @@
 namespace cosim::coupler {
 
 void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
-  const std::vector<double> p_now = s.pressure;
+  const std::vector<double> p_now = s.pressure, u_now = s.normal_velocity;
   const std::vector<char> wet_now = s.wetted;
   if (have_prev_ && t > prev_time_ && dt > 0 && prev_pressure_.size() == s.pressure.size() &&
       prev_wetted_.size() == s.wetted.size()) {
@@ -15,11 +15,14 @@ void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
         const std::size_t i = static_cast<std::size_t>(f) * s.phases + k;
         const double p = s.pressure[i] + r * (s.pressure[i] - prev_pressure_[i]);
         if (p > 0) s.pressure[i] = p;
+        if (with_velocity_ && prev_velocity_.size() == s.normal_velocity.size())
+          s.normal_velocity[i] += r * (s.normal_velocity[i] - prev_velocity_[i]);
       }
     }
   }
   if (!have_prev_ || t > prev_time_) {  // the first of several samples at one time (cycle 0 and 1) counts
     prev_pressure_ = p_now;
+    prev_velocity_ = u_now;
     prev_wetted_ = wet_now;
     prev_time_ = t;
     have_prev_ = true;

@@ -14,11 +14,15 @@ namespace cosim::coupler {
 
 class PressurePredictor {
  public:
+  // with_velocity: the normal velocities too (mode robin, where the solid takes the characteristic
+  // p - z_f u at t^{n+1}: a lagged u would act as an added mass z_f dt per area).
+  explicit PressurePredictor(bool with_velocity = false) : with_velocity_(with_velocity) {}
   // s: the samples taken at time t; dt: the step that follows. Keeps the raw samples for the next call.
   void apply(coupling::FluidSamples& s, double t, double dt);
 
  private:
-  std::vector<double> prev_pressure_;
+  bool with_velocity_;
+  std::vector<double> prev_pressure_, prev_velocity_;
   std::vector<char> prev_wetted_;
   double prev_time_ = 0;
   bool have_prev_ = false;

@@ -12,8 +12,8 @@ namespace cosim::coupling {
 enum class Role { Coupler, Fluid, Solid };
 const char* role_name(Role r);  // "coupler", "fluid", "solid"
 
-enum class Mode { Impedance, Standard, Characteristic };
-const char* mode_name(Mode m);  // "impedance", "standard", "characteristic"
+enum class Mode { Impedance, Standard, Characteristic, Robin };
+const char* mode_name(Mode m);  // "impedance", "standard", "characteristic", "robin"
 
 // Order of the cycle (docs/protocol.md, "Schemes"). Pipelined: the fluid proposes its next step from t^n right
 // after its samples, so the coupler decides the next step before the fluid advances and the solid's step n+1
@@ -52,7 +52,8 @@ struct InterfaceStates {
   std::vector<double> pressure, normal_velocity;            // count * phases [Pa], [m/s]
   std::vector<double> face_pressure, face_normal_velocity;  // count [Pa], [m/s]
   std::vector<char> face_wetted;                            // count (with face_pressure)
-  Mode mode = Mode::Impedance;
+  std::vector<double> face_impedance;  // count [Pa s/m] (mode Robin): d(face pressure)/d(face normal velocity)
+  Mode mode = Mode::Robin;
 };
 
 // What the coupler asks a solver to do next (Client::next()).

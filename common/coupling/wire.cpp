@@ -22,6 +22,7 @@ const char* mode_name(Mode m) {
     case Mode::Impedance: return "impedance";
     case Mode::Standard: return "standard";
     case Mode::Characteristic: return "characteristic";
+    case Mode::Robin: return "robin";
   }
   return "?";
 }
@@ -59,6 +60,7 @@ pb::CouplingMode to_pb(Mode m) {
     case Mode::Impedance: return pb::COUPLING_MODE_IMPEDANCE;
     case Mode::Standard: return pb::COUPLING_MODE_STANDARD;
     case Mode::Characteristic: return pb::COUPLING_MODE_CHARACTERISTIC;
+    case Mode::Robin: return pb::COUPLING_MODE_ROBIN;
   }
   return pb::COUPLING_MODE_UNSPECIFIED;
 }
@@ -67,6 +69,7 @@ Mode from_pb(pb::CouplingMode m) {
   switch (m) {
     case pb::COUPLING_MODE_STANDARD: return Mode::Standard;
     case pb::COUPLING_MODE_CHARACTERISTIC: return Mode::Characteristic;
+    case pb::COUPLING_MODE_ROBIN: return Mode::Robin;
     default: return Mode::Impedance;
   }
 }
@@ -137,6 +140,13 @@ std::string finite_check(const char* msg, const char* field, const R& values, bo
     if (std::isnan(v) || (!allow_inf && std::isinf(v)))
       return fmt::format("{}.{}[{}]: {} is not a finite number", msg, field, i, v);
   }
+  return "";
+}
+
+template <class R>
+std::string nonnegative_check(const char* msg, const char* field, const R& values) {
+  for (int i = 0; i < values.size(); ++i)
+    if (values[i] < 0.0) return fmt::format("{}.{}[{}]: {}, expected >= 0", msg, field, i, values[i]);
   return "";
 }
 
@@ -224,10 +234,15 @@ std::string validate_states(const pb::InterfaceStates& m) {
                 size_check("InterfaceStates", "face_pressure", m.face_pressure_size(), nf, "count"),
                 size_check("InterfaceStates", "face_normal_velocity", m.face_normal_velocity_size(), nf, "count"),
                 size_check("InterfaceStates", "face_wetted", m.face_wetted_size(), nf, "count"),
+                m.face_impedance_size() ? size_check("InterfaceStates", "face_impedance", m.face_impedance_size(), nf,
+                                                     "count (with face_pressure)")
+                                        : std::string(),
                 finite_check("InterfaceStates", "pressure", m.pressure()),
                 finite_check("InterfaceStates", "normal_velocity", m.normal_velocity()),
                 finite_check("InterfaceStates", "face_pressure", m.face_pressure()),
-                finite_check("InterfaceStates", "face_normal_velocity", m.face_normal_velocity())});
+                finite_check("InterfaceStates", "face_normal_velocity", m.face_normal_velocity()),
+                finite_check("InterfaceStates", "face_impedance", m.face_impedance()),
+                nonnegative_check("InterfaceStates", "face_impedance", m.face_impedance())});
 }
 
 }  // namespace
@@ -324,6 +339,7 @@ void to_pb(const InterfaceStates& s, pb::InterfaceStates& m) {
   put(s.face_normal_velocity, m.mutable_face_normal_velocity());
   m.mutable_face_wetted()->Clear();
   for (char w : s.face_wetted) m.add_face_wetted(w != 0);
+  put(s.face_impedance, m.mutable_face_impedance());
   m.set_mode(to_pb(s.mode));
 }
 
@@ -336,6 +352,7 @@ InterfaceStates from_pb(const pb::InterfaceStates& m) {
   s.face_pressure = vec<double>(m.face_pressure());
   s.face_normal_velocity = vec<double>(m.face_normal_velocity());
   s.face_wetted = vec<char>(m.face_wetted());
+  s.face_impedance = vec<double>(m.face_impedance());
   s.mode = from_pb(m.mode());
   return s;
 }

@@ -43,6 +43,7 @@ int run_fluid_coupled(const RunOptions& opt) {
   std::unique_ptr<coupling::Client> client =
       coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phase_names));
   if (!client) return 5;
+  boundary->sample_wall_velocity(client->mode() == coupling::Mode::Robin);
   spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,
                sim->interior_cells(), scene.num_phases(), opt.coupler, coupling::mode_name(client->mode()));
 

@@ -37,7 +37,9 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     surface_ = surface_from_faces(faces, DIM, dt);
     embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces);
+    interface::SampleOptions so;
+    so.extrapolate_velocity = wall_velocity_;
+    samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces, so);
     return samples_;
   }
 

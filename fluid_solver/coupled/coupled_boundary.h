@@ -24,6 +24,12 @@ class CoupledBoundary {
   virtual void apply_states(const coupling::InterfaceStates& states) = 0;
   virtual std::string segments_csv() const = 0;
   virtual double geometry_seconds() const = 0;  // total spent in the geometry [s]
+  // The samples' normal velocity extrapolated to the wall like the pressure (coupling.mode robin, whose
+  // solid weighs u_f - u_s by the fluid's impedance; interface_samples.h). Off: the sample point's value.
+  void sample_wall_velocity(bool on) { wall_velocity_ = on; }
+
+ protected:
+  bool wall_velocity_ = false;
 };
 
 // For a 1D, 2D or 3D simulation.

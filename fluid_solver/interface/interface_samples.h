@@ -6,8 +6,9 @@
 // (fluid / fluid-cut) only, their weights renormalised. A point whose flow cells carry less than half
 // the weight is pushed out by another h (at most twice). The pressure is extrapolated linearly to the
 // wall from that point and one more h out: next to a moving wall the gas accelerates, and its pressure
-// gradient rho a would bias the load by rho a h (piston_2d: 0.27% -> 0.08% from the reference trajectory).
-// The other values are the point's. A face is not wetted (no load, no state) when
+// gradient rho a would bias the load by rho a h (piston_2d: 0.27% -> 0.08% from the reference trajectory),
+// and optionally the normal velocity (coupling.mode robin), kept between the point's and the wall's. The
+// other values are the point's. A face is not wetted (no load, no state) when
 // its sample point leaves the fluid domain or finds no flow cells: e.g. the parts of a solid that
 // reach outside the background mesh.
 #pragma once
@@ -27,7 +28,8 @@ namespace cosim::fluid::interface {
 struct SampleOptions {
   double min_flow_weight = 0.5;
   int max_pushes = 2;
-  bool extrapolate_pressure = true;  // pressure extrapolated linearly to the wall from two points
+  bool extrapolate_pressure = true;   // pressure extrapolated linearly to the wall from two points
+  bool extrapolate_velocity = false;  // and the normal velocity with it (where the pressure's extrapolation holds)
 };
 
 template <int DIM>
@@ -105,11 +107,12 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   };
   for (int f = 0; f < faces.count; ++f) {
     std::array<double, 3> c{0, 0, 0}, n{0, 0, 0};
-    double h = 0;
+    double h = 0, v_wall = 0;
     for (int d = 0; d < DIM; ++d) {
       c[d] = faces.centre[static_cast<std::size_t>(f) * DIM + d];
       n[d] = faces.normal[static_cast<std::size_t>(f) * DIM + d];
       h += std::abs(n[d]) * g.dx[d];
+      if (!faces.velocity.empty()) v_wall += faces.velocity[static_cast<std::size_t>(f) * DIM + d] * n[d];
     }
     for (int push = 0; push <= opt.max_pushes; ++push) {
       const double s1 = (1.0 + push) * h;
@@ -125,16 +128,25 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
       const bool second = opt.extrapolate_pressure && inside(x2) && evaluate(x2, n, far);
       for (int k = 0; k < np; ++k) {
         const Values& v = vals[static_cast<std::size_t>(k)];
-        double p = v.p;
+        double p = v.p, un = v.un;
         if (second) {
-          const double pe = v.p + (s1 / h) * (v.p - far[static_cast<std::size_t>(k)].p);
-          // Only where the extrapolation stays between half and twice the point value (smooth flow).
-          if (pe > 0.5 * v.p && pe < 2.0 * v.p) p = pe;
+          const Values& v2 = far[static_cast<std::size_t>(k)];
+          const double pe = v.p + (s1 / h) * (v.p - v2.p);
+          // Only where the extrapolation stays between half and twice the point value (smooth flow); there the
+          // normal velocity too: next to a wall the gas velocity varies over the chamber (a piston's gas moves
+          // with it at the wall and not at the far end), and the Robin and characteristic conditions weigh
+          // v_f - v_s by z_f, which the point value would bias by z_f h du/dn, a damping of the motion.
+          if (pe > 0.5 * v.p && pe < 2.0 * v.p) {
+            p = pe;
+            // Kept between the point's value and the wall's: the fluid's velocity at the wall is the wall's.
+            if (opt.extrapolate_velocity)
+              un = std::clamp(v.un + (s1 / h) * (v.un - v2.un), std::min(v.un, v_wall), std::max(v.un, v_wall));
+          }
         }
         const std::size_t i = static_cast<std::size_t>(f) * np + k;
         out.alpha[i] = v.a;
         out.rho[i] = v.rho;
-        out.normal_velocity[i] = v.un;
+        out.normal_velocity[i] = un;
         out.pressure[i] = p;
         out.impedance[i] = v.rho * v.c;
         if (k == 1 && dispersed) {

@@ -71,7 +71,17 @@ int run_solid_coupled(const RunOptions& opt) {
       throw std::invalid_argument(
           fmt::format("InterfaceStates.face_pressure: {} values for {} faces", st.face_pressure.size(), st.count));
     sim->set_face_pressures(st.face_pressure);
-    apply_velocity = client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
+    // Robin: the fluid's impedance enters the solid's own step (no imposed velocity); impedance and
+    // characteristic: the nodes of wetted faces take the interface velocity.
+    const bool robin = client->mode() == coupling::Mode::Robin;
+    if (robin) {
+      if (st.face_impedance.size() != st.face_pressure.size())
+        throw std::invalid_argument(fmt::format("InterfaceStates.face_impedance: {} values for {} faces (mode robin)",
+                                                st.face_impedance.size(), st.count));
+      sim->set_face_impedances(st.face_impedance);
+    }
+    apply_velocity =
+        !robin && client->mode() != coupling::Mode::Standard && st.face_wetted.size() == st.face_pressure.size();
     if (apply_velocity) sim->set_face_normal_velocities(st.face_normal_velocity, st.face_wetted);
     last = st;
     if (scene.history_every > 0 && ++cycles % scene.history_every == 0) history.record(*sim);

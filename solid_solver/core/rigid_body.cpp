@@ -1,5 +1,7 @@
 #include "solid_solver/core/rigid_body.h"
 
+#include <Eigen/Dense>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -164,12 +166,43 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
   }
   // Translation, with prescribed components (their reaction force does work R . Vbar).
   const double ramp = rb.fixed_ramp > 0 ? std::min(1.0, t_half / rb.fixed_ramp) : 1.0;
-  double Vn[3] = {0, 0, 0};
+  // With the fluid's Robin condition (added_K, added_b; zero without it), as for the nodes
+  // (simulation.cpp, impedance_update): (M I + theta dt K) V' = M V + dt (F + b - (1 - theta) K V) over the
+  // free components, the prescribed ones known.
+  double Vn[3] = {0, 0, 0}, Vc[3] = {0, 0, 0};
+  {
+    double trace = 0.0;
+    for (int i = 0; i < D; ++i) trace += rb.added_K[i][i];
+    const double theta = trace > 0 ? std::max(0.5, 1.0 - rb.mass / (dt * trace)) : 1.0;
+    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int i = 0; i < D; ++i)
+      if (rb.fixed[i]) r[i] = ramp * rb.fixed_value[i];
+    for (int i = 0; i < D; ++i) {
+      if (rb.fixed[i]) continue;
+      A(i, i) = rb.mass;
+      r[i] = rb.mass * rb.V[i] + dt * (F[i] + rb.added_b[i]);
+      for (int j = 0; j < D; ++j) {
+        r[i] -= dt * (1.0 - theta) * rb.added_K[i][j] * rb.V[j];
+        if (rb.fixed[j]) {
+          r[i] -= dt * theta * rb.added_K[i][j] * r[j];
+        } else {
+          A(i, j) += dt * theta * rb.added_K[i][j];
+        }
+      }
+    }
+    const Eigen::Vector3d x = A.ldlt().solve(r);
+    for (int d = 0; d < D; ++d) {
+      Vn[d] = x[d];
+      Vc[d] = (1.0 - theta) * rb.V[d] + theta * Vn[d];
+    }
+  }
   for (int d = 0; d < D; ++d) {
-    Vn[d] = rb.V[d] + dt * F[d] / rb.mass;
+    double robin = rb.added_b[d];  // the Robin force at the step's velocity, whose work is boundary work
+    for (int j = 0; j < D; ++j) robin -= rb.added_K[d][j] * Vc[j];
+    wb += dt * robin * 0.5 * (rb.V[d] + Vn[d]);
     if (rb.fixed[d]) {
-      Vn[d] = ramp * rb.fixed_value[d];
-      const double reaction = rb.mass * (Vn[d] - rb.V[d]) / dt - F[d];
+      const double reaction = rb.mass * (Vn[d] - rb.V[d]) / dt - F[d] - robin;
       wb += dt * reaction * 0.5 * (rb.V[d] + Vn[d]);
     }
   }

@@ -32,6 +32,10 @@ struct RigidBody {
   double fixed_value[3] = {0, 0, 0};               // their values [m/s]
   double fixed_ramp = 0.0;                         // linear ramp time of the prescribed values [s]
   bool rotation_locked = false;
+  // The fluid's Robin condition on the body (Simulation::set_face_impedances): translation force b - K V at the
+  // new velocity, taken implicitly; zero when none.
+  double added_K[3][3] = {};  // [kg/s]
+  double added_b[3] = {};     // [N]
 };
 
 // Builds the body of block b from the current nodal positions, masses and velocities (its node velocities

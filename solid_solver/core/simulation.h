@@ -69,6 +69,11 @@ class Simulation {
   // change: a flat face sets the normal component, a corner the whole vector). Rigid-block nodes and fixed
   // components are left alone. The kinetic-energy change is counted as boundary work. Used once.
   void set_face_normal_velocities(const std::vector<double>& u, const std::vector<char>& wetted);
+  // The fluid's impedance Z per exterior face (coupling.mode robin, with set_face_pressures): the pressure on a
+  // face becomes p + Z (v . n - v_sent), v_sent its normal velocity in the last boundary_faces(), with v the
+  // new velocity of its nodes, solved implicitly in each step (docs/methods.md §4.4); faces with Z = 0 keep
+  // the explicit pressure. Rigid blocks take it on their translation. An empty vector removes it.
+  void set_face_impedances(const std::vector<double>& z);
   // Through the exterior of the ALE blocks since t = 0 (inflow positive) and the kinetic energy turned into heat.
   const RemapFlux& ale_flux() const { return ale_total_; }
   // Rigid blocks (blocks[].rigid), in block order.
@@ -110,7 +115,10 @@ class Simulation {
   };
   std::vector<InterfaceNode> iface_;
   std::vector<double> face_p_;  // coupler pressures per exterior face [Pa] (empty: none)
-  double rigid_ie_ = 0.0;       // internal energy of the rigid elements (constant) [J]
+  // Robin interface nodes: slot per node (-1: none), per slot K (3x3, row-major) and b (3) of impedance_update.
+  std::vector<int> robin_slot_;
+  std::vector<double> robin_K_, robin_b_;
+  double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
 };
 

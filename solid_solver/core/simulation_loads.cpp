@@ -125,6 +125,58 @@ void Simulation::set_face_normal_velocities(const std::vector<double>& u, const 
   }
 }
 
+void Simulation::set_face_impedances(const std::vector<double>& z) {
+  if (!faces_built_) boundary_faces();
+  for (int n = 0; n < mesh_.num_nodes; ++n) st_.bc_mask[n] &= static_cast<std::uint8_t>(~kBcImpedance);
+  for (auto& rb : rigid_) {
+    for (auto& row : rb.added_K) row[0] = row[1] = row[2] = 0.0;
+    rb.added_b[0] = rb.added_b[1] = rb.added_b[2] = 0.0;
+  }
+  robin_K_.clear();
+  robin_b_.clear();
+  if (z.empty()) return;
+  if (static_cast<int>(z.size()) != faces_.count)
+    throw std::invalid_argument(
+        fmt::format("set_face_impedances: {} values for {} exterior faces", z.size(), faces_.count));
+  const int D = mesh_.dim, k = faces_.nodes_per_face;
+  robin_slot_.assign(mesh_.num_nodes, -1);
+  for (int f = 0; f < faces_.count; ++f) {
+    if (!(z[f] > 0.0)) continue;
+    double nf[3] = {0, 0, 0}, v_sent = 0.0;
+    for (int d = 0; d < D; ++d) {
+      nf[d] = faces_.normal[static_cast<std::size_t>(f) * D + d];
+      v_sent += faces_.velocity[static_cast<std::size_t>(f) * D + d] * nf[d];
+    }
+    const double w = faces_.area[f] / k * z[f];
+    for (int q = 0; q < k; ++q) {
+      const int n = faces_.nodes[static_cast<std::size_t>(f) * k + q];
+      if (robin_slot_[n] < 0) {
+        robin_slot_[n] = static_cast<int>(robin_b_.size() / 3);
+        robin_K_.resize(robin_K_.size() + 9, 0.0);
+        robin_b_.resize(robin_b_.size() + 3, 0.0);
+        st_.bc_mask[n] |= kBcImpedance;
+      }
+      double* K = &robin_K_[9 * static_cast<std::size_t>(robin_slot_[n])];
+      double* b = &robin_b_[3 * static_cast<std::size_t>(robin_slot_[n])];
+      for (int i = 0; i < D; ++i) {
+        b[i] += w * v_sent * nf[i];
+        for (int j = 0; j < D; ++j) K[3 * i + j] += w * nf[i] * nf[j];
+      }
+    }
+  }
+  // Rigid blocks: the sums over their nodes act on the translation (the rotation keeps the explicit load).
+  for (auto& rb : rigid_)
+    for (int n : rb.nodes) {
+      if (robin_slot_[n] < 0) continue;
+      const double* K = &robin_K_[9 * static_cast<std::size_t>(robin_slot_[n])];
+      const double* b = &robin_b_[3 * static_cast<std::size_t>(robin_slot_[n])];
+      for (int i = 0; i < 3; ++i) {
+        rb.added_b[i] += b[i];
+        for (int j = 0; j < 3; ++j) rb.added_K[i][j] += K[3 * i + j];
+      }
+    }
+}
+
 void Simulation::apply_interface_velocities() {
   const int D = mesh_.dim;
   double wb = 0;

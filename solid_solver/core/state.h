@@ -17,8 +17,9 @@ class StateError : public app::NumericalError {
 };
 
 // Node boundary-condition flags: bits 0..2 prescribe velocity component d; bit 3 marks external loads;
-// bit 4 marks nodes of a rigid block (moved by the rigid-body update, core/rigid_body.h).
-enum : std::uint8_t { kBcLoaded = 8, kBcRigid = 16 };
+// bit 4 marks nodes of a rigid block (moved by the rigid-body update, core/rigid_body.h); bit 5 nodes under the
+// fluid's Robin condition (Simulation::set_face_impedances).
+enum : std::uint8_t { kBcLoaded = 8, kBcRigid = 16, kBcImpedance = 32 };
 
 struct State {
   // nodes
