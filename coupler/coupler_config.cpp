@@ -11,7 +11,7 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   Node n = root.child("coupling");
   CouplerConfig c;
   const std::string mode =
-      n.get<std::string>("mode", "impedance", one_of({"robin", "impedance", "characteristic", "standard"}));
+      n.get<std::string>("mode", "robin", one_of({"robin", "impedance", "characteristic", "standard"}));
   c.mode = mode == "standard"         ? coupling::Mode::Standard
            : mode == "characteristic" ? coupling::Mode::Characteristic
            : mode == "robin"          ? coupling::Mode::Robin

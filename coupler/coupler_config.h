@@ -1,6 +1,6 @@
 // The `coupling:` section of a scene (the coupler reads only this section; the others belong to the solvers).
 //   coupling:
-//     mode: impedance            # impedance | standard | characteristic (interface_conditions.h)
+//     mode: robin                # robin | impedance | characteristic | standard (interface_conditions.h)
 //     time: {end: 0.37, max_cycles: 1000000, dt_max: 1.0e-3}   # [s], [-], [s] (dt_max optional)
 //     output: {interval: 0.005}  # [s] or times: [...]; snapshot requests to both solvers
 //     timeout: 5.0               # [s] a peer silent for longer is declared dead
@@ -18,7 +18,7 @@
 namespace cosim::coupler {
 
 struct CouplerConfig {
-  coupling::Mode mode = coupling::Mode::Impedance;
+  coupling::Mode mode = coupling::Mode::Robin;
   coupling::Scheme scheme = coupling::Scheme::Pipelined;
   double t_end = 0.0;
   long max_cycles = 1000000000L;

@@ -7,7 +7,10 @@
 The closed boundary of a rigid slab [left, right] x (transverse box) moving along x: 4 segments (2D) or 6 quads
 (3D) with their vertices, so a real fluid_solver can embed it. Newton's law under the interface pressures of
 the previous cycle (paper section 8, step 1): F = -sum p A n_x, v += dt F / m, x += dt v (symplectic Euler, as
-solid_solver's leapfrog). Defaults come from the scene's solid: section when it describes a box mesh with a
+solid_solver's leapfrog). Under coupling.mode robin the states carry the fluid's impedance Z per face and the
+pressure on a face is p + Z (v' n_x - v_sent n_x) at the new velocity, taken implicitly as solid_solver does
+(docs/methods.md §4.4): (m + theta dt K) v' = m v + dt (F + b - (1 - theta) K v), K = sum Z A n_x^2,
+b = sum Z A n_x v_sent n_x, theta = max(1/2, 1 - m / (dt K)). Defaults come from the scene's solid: section when it describes a box mesh with a
 rigid block named "piston" (solid_solver format), else from the flags (--area: 2D height x 1 m).
 Writes DIR/piston.csv (t, x, v, F) at every OutputRequest.
 """
@@ -102,6 +105,8 @@ def main():
     normals = [faces0["normal"][i * a.dim:(i + 1) * a.dim] for i in range(len(areas))]
     x, v, force = 0.0, a.v0, 0.0
     p = [0.0] * len(areas)  # interface pressure per face [Pa]
+    z = [0.0] * len(areas)  # the fluid's impedance per face (mode robin) [Pa s/m]
+    v_sent = 0.0
     os.makedirs(a.out, exist_ok=True)
     out = open(os.path.join(a.out, "piston.csv"), "w")
     out.write("time,x,v,force\n")
@@ -123,12 +128,21 @@ def main():
                 continue
             dt = value
             force = sum(-pf * af * nf[0] for pf, af, nf in zip(p, areas, normals))
-            v += dt * force / m
+            k = sum(zf * af * nf[0] ** 2 for zf, af, nf in zip(z, areas, normals))
+            if k > 0 and dt > 0:
+                theta = max(0.5, 1.0 - m / (dt * k))
+                v_new = (m * v + dt * (force + k * v_sent - (1.0 - theta) * k * v)) / (m + theta * dt * k)
+                force += k * (v_sent - ((1.0 - theta) * v + theta * v_new))  # the Robin part, for piston.csv
+                v = v_new
+            else:
+                v += dt * force / m
             x += dt * v
             c.send_faces(box_faces(a.dim, left + x, right + x, lower, upper, v, area))
             c.propose_dt(a.dt)
             st = c.receive_states()
             p = list(st.face_pressure)
+            z = list(st.face_impedance) if len(st.face_impedance) == len(p) else [0.0] * len(p)
+            v_sent = v
     except CouplingError as e:
         print(tag + "error: %s" % e, file=sys.stderr)
         c.report_error(str(e))

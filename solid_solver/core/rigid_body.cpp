@@ -164,6 +164,7 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
     cross(r, f, rxf);
     for (int d = 0; d < 3; ++d) T[d] += rxf[d];
   }
+  for (int d = 0; d < 3; ++d) T[d] += rb.added_torque[d];
   // Translation, with prescribed components (their reaction force does work R . Vbar).
   const double ramp = rb.fixed_ramp > 0 ? std::min(1.0, t_half / rb.fixed_ramp) : 1.0;
   // With the fluid's Robin condition (added_K, added_b; zero without it), as for the nodes
@@ -209,9 +210,12 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
   // Rotation.
   M3 R = {};  // R - 1
   if (!rb.rotation_locked) {
+    double w0[3];
+    angular_velocity(rb, D, rb.Q, rb.L, w0);
     for (int d = (D == 2 ? 2 : 0); d < 3; ++d) rb.L[d] += dt * T[d];
     double w[3];
     angular_velocity(rb, D, rb.Q, rb.L, w);
+    for (int d = 0; d < 3; ++d) wb += dt * rb.added_torque[d] * 0.5 * (w0[d] + w[d]);  // its work
     if (D == 3) {  // predictor: inertia at the mid-step orientation
       M3 Rh, Qh;
       const double wh[3] = {0.5 * dt * w[0], 0.5 * dt * w[1], 0.5 * dt * w[2]};

@@ -33,9 +33,12 @@ struct RigidBody {
   double fixed_ramp = 0.0;                         // linear ramp time of the prescribed values [s]
   bool rotation_locked = false;
   // The fluid's Robin condition on the body (Simulation::set_face_impedances): translation force b - K V at the
-  // new velocity, taken implicitly; zero when none.
-  double added_K[3][3] = {};  // [kg/s]
-  double added_b[3] = {};     // [N]
+  // new velocity, taken implicitly; zero when none. The rotation takes the load without its impedance part
+  // (added_torque removes the torque of -Z v_sent from the face pressures): an explicit impedance torque on a
+  // light body would grow by (1 - dt K_rot / I) per step.
+  double added_K[3][3] = {};    // [kg/s]
+  double added_b[3] = {};       // [N]
+  double added_torque[3] = {};  // [N m]
 };
 
 // Builds the body of block b from the current nodal positions, masses and velocities (its node velocities

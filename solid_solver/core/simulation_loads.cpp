@@ -131,6 +131,7 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
   for (auto& rb : rigid_) {
     for (auto& row : rb.added_K) row[0] = row[1] = row[2] = 0.0;
     rb.added_b[0] = rb.added_b[1] = rb.added_b[2] = 0.0;
+    rb.added_torque[0] = rb.added_torque[1] = rb.added_torque[2] = 0.0;
   }
   robin_K_.clear();
   robin_b_.clear();
@@ -174,6 +175,11 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
         rb.added_b[i] += b[i];
         for (int j = 0; j < 3; ++j) rb.added_K[i][j] += K[3 * i + j];
       }
+      double r[3] = {0, 0, 0};
+      for (int d = 0; d < D; ++d) r[d] = st_.x[static_cast<std::size_t>(n) * D + d] - rb.X[d];
+      rb.added_torque[0] += r[1] * b[2] - r[2] * b[1];
+      rb.added_torque[1] += r[2] * b[0] - r[0] * b[2];
+      rb.added_torque[2] += r[0] * b[1] - r[1] * b[0];
     }
 }
 

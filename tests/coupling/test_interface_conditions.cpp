@@ -133,6 +133,45 @@ TEST(InterfaceConditions, UnwettedFacesGetNoLoadAndCountsMustMatch) {
   EXPECT_THROW(interface_conditions(face(1, 0, 0, 1), s, Mode::Impedance), std::invalid_argument);
 }
 
+// Robin (methods §4.4): the fluid gets the wall's velocity and the pressure along its incoming characteristic
+// p_f - z_f (v_f - v_s), whatever the solid's impedance (its own step takes the rest); the solid gets the
+// alpha-weighted fluid impedance with it, so that face_pressure + Z (v - v_s) is the alpha-weighted sum of the
+// phases' characteristics at any wall velocity v. Unwetted faces: no load, no impedance.
+TEST(InterfaceConditions, RobinGivesTheFluidsCharacteristicAndImpedance) {
+  for (double z_s : {1e-6, 1000.0, std::numeric_limits<double>::infinity()}) {
+    const auto pt = interface_point(Mode::Robin, 2.0, -3e5, z_s, -1.0, 1e5, 400.0);
+    EXPECT_EQ(pt.velocity, 2.0);
+    EXPECT_DOUBLE_EQ(pt.pressure, 1e5 + 400.0 * (2.0 + 1.0));
+  }
+  const auto st = interface_conditions(face(1, 0.5, -1e5, 1000.0),
+                                       samples({0.25, 0.75}, {1.0, -2.0}, {2e5, 3e5}, {1000.0, 3000.0}), Mode::Robin);
+  ASSERT_EQ(st.face_impedance.size(), 1u);
+  EXPECT_DOUBLE_EQ(st.face_impedance[0], 0.25 * 1000.0 + 0.75 * 3000.0);
+  for (double v : {-3.0, 0.5, 7.0}) {
+    const double phases = 0.25 * (2e5 + 1000.0 * (v - 1.0)) + 0.75 * (3e5 + 3000.0 * (v + 2.0));
+    EXPECT_NEAR(st.face_pressure[0] + st.face_impedance[0] * (v - 0.5), phases, 1e-9 * phases) << v;
+  }
+  EXPECT_EQ(st.face_normal_velocity[0], 0.5);
+  auto dry = samples({1}, {0.0}, {1e5}, {400});
+  dry.wetted = {0};
+  const auto u = interface_conditions(face(1, 3.0, -2e5, 1000.0), dry, Mode::Robin);
+  EXPECT_EQ(u.face_pressure[0], 0.0);
+  EXPECT_EQ(u.face_impedance[0], 0.0);
+}
+
+// In Robin mode the predictor extrapolates the normal velocities with the pressures (the characteristic
+// p - z u at t^{n+1}); by default it leaves them alone.
+TEST(PressurePredictor, RobinModeExtrapolatesTheVelocityToo) {
+  for (bool with_velocity : {false, true}) {
+    PressurePredictor pp(with_velocity);
+    FluidSamples a = samples({1}, {1.0}, {1e5}, {400}), b = samples({1}, {2.0}, {1.1e5}, {400});
+    pp.apply(a, 0.0, 0.1);
+    pp.apply(b, 0.1, 0.05);
+    EXPECT_DOUBLE_EQ(b.pressure[0], 1.15e5);
+    EXPECT_DOUBLE_EQ(b.normal_velocity[0], with_velocity ? 2.5 : 2.0);
+  }
+}
+
 // The coupler's pressure predictor (coupler/pressure_predictor.h): pressures linear in time reach t + dt
 // exactly; a face not wetted in both samples, a non-positive extrapolation and the first sample stay as they
 // are; a second sample at the same time (cycles 0 and 1) is no history.

@@ -32,11 +32,13 @@ std::string piston_exe() {
 
 TEST(CouplingLauncher, PythonPistonUnderAConstantPressureDifference) {
   // Scripted fluid: p = 1e5 + G x on each face, so F = (p_left - p_right) A = -G L A is constant (rigid
-  // piston: impedance coupling gives the fluid pressure to the solid): v = a t exactly, and symplectic Euler's
+  // piston: impedance coupling gives the fluid pressure to the solid; the Robin condition would add the
+  // scripted fluid's impedance): v = a t exactly, and symplectic Euler's
   // x differs from a t^2 / 2 by at most a t dt / 2. The pressures are not physical (negative on the left face),
   // so the coupler's pressure predictor (which keeps extrapolated pressures positive) is off.
   const fs::path dir = test_dir("piston");
-  const fs::path scene = write_scene(dir, "  time: {end: 0.01}\n  output: {interval: 0.005}\n  predictor: none\n");
+  const fs::path scene =
+      write_scene(dir, "  mode: impedance\n  time: {end: 0.01}\n  output: {interval: 0.005}\n  predictor: none\n");
   const fs::path run = dir / "run";
   const int rc = run_cosim(
       scene.string() + " --out " + run.string() + " " + fluid_exe("--pressure-gradient 1e5") + " " + piston_exe(),

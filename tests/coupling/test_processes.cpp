@@ -178,7 +178,7 @@ TEST(CouplingProcesses, ProtocolTranscriptOfTheFirstCycles) {
   // Deterministic scripted peers, 3 cycles; any change of what crosses the wire changes this text.
   // Regenerate on purpose with COSIM_UPDATE_TRANSCRIPT=1 and review the diff.
   const fs::path dir = test_dir("transcript");
-  const fs::path scene = write_scene(dir, "  mode: impedance\n  time: {end: 3.0e-4}\n  output: {interval: 2.0e-4}\n");
+  const fs::path scene = write_scene(dir, "  mode: robin\n  time: {end: 3.0e-4}\n  output: {interval: 2.0e-4}\n");
   const std::string ep = "ipc://" + (dir / "c.sock").string();
   const fs::path got = dir / "transcript.txt";
   std::vector<Child> cs{

@@ -49,7 +49,7 @@ TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNot
   EXPECT_EQ(ok, 0) << out;
   EXPECT_NE(out.find("valid; a coupled run"), std::string::npos) << out;
   // the plan: what each program will do
-  EXPECT_NE(out.find("coupler: impedance interface conditions"), std::string::npos) << out;
+  EXPECT_NE(out.find("coupler: robin interface conditions"), std::string::npos) << out;
   EXPECT_NE(out.find("fluid: 2D, 160 x 8 cells (1280), 1 phase(s) (gas), aufs flux, state about"), std::string::npos)
       << out;
   EXPECT_NE(out.find("solid: 2D, 8 elements, 15 nodes, 1 block(s)"), std::string::npos) << out;
