@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/coupling/errors.h"
@@ -156,6 +157,44 @@ std::string first(std::initializer_list<std::string> errors) {
   return "";
 }
 
+// The normal must point the way the face's vertices say (docs/protocol.md: 2D segment a -> b has the outward
+// normal (b_y - a_y, a_x - b_x); a 3D triangle or quad by the right-hand rule): a flipped normal turns the load
+// and the fluid's side of the wall around. Faces without a vertex orientation (1D points, degenerate faces)
+// are not checked.
+std::string orientation_check(const pb::InterfaceFaces& m) {
+  const long n = m.count(), d = m.dim(), k = m.nodes_per_face();
+  if (!((d == 2 && k == 2) || (d == 3 && (k == 3 || k == 4)))) return "";
+  const auto x = [&](long f, int q, int c) { return m.vertex_position(m.face_vertex(f * k + q) * d + c); };
+  for (long f = 0; f < n; ++f) {
+    double g[3] = {0, 0, 0};
+    if (d == 2) {
+      g[0] = x(f, 1, 1) - x(f, 0, 1);
+      g[1] = x(f, 0, 0) - x(f, 1, 0);
+    } else {
+      double d1[3], d2[3];  // quad: its diagonals 0 -> 2 and 1 -> 3; triangle: the edges 0 -> 1 and 0 -> 2
+      for (int i = 0; i < 3; ++i) {
+        d1[i] = k == 4 ? x(f, 2, i) - x(f, 0, i) : x(f, 1, i) - x(f, 0, i);
+        d2[i] = k == 4 ? x(f, 3, i) - x(f, 1, i) : x(f, 2, i) - x(f, 0, i);
+      }
+      g[0] = d1[1] * d2[2] - d1[2] * d2[1];
+      g[1] = d1[2] * d2[0] - d1[0] * d2[2];
+      g[2] = d1[0] * d2[1] - d1[1] * d2[0];
+    }
+    double gn = 0, gg = 0;
+    for (long c = 0; c < d; ++c) {
+      gn += g[c] * m.normal(f * d + c);
+      gg += g[c] * g[c];
+    }
+    if (!(gg > 0)) continue;
+    if (gn < 0.5 * std::sqrt(gg))
+      return fmt::format(
+          "InterfaceFaces.normal[{}..{}]: face {} has a normal at {:.0f} degrees from the one its vertices give "
+          "(face_vertex order), expected the outward normal of docs/protocol.md (flipped normals?)",
+          f * d, f * d + d - 1, f, std::acos(std::clamp(gn / std::sqrt(gg), -1.0, 1.0)) * 180.0 / M_PI);
+  }
+  return "";
+}
+
 std::string validate_faces(const pb::InterfaceFaces& m) {
   if (m.dim() < 1 || m.dim() > 3) return fmt::format("InterfaceFaces.dim: {}, expected 1, 2 or 3", m.dim());
   const long n = m.count(), d = m.dim();
@@ -193,6 +232,8 @@ std::string validate_faces(const pb::InterfaceFaces& m) {
     for (int i = 0; i < m.face_vertex_size(); ++i)
       if (m.face_vertex(i) >= nv)
         return fmt::format("InterfaceFaces.face_vertex[{}]: {} out of range (vertices: {})", i, m.face_vertex(i), nv);
+    e = orientation_check(m);
+    if (!e.empty()) return e;
   }
   return "";
 }

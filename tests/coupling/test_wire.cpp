@@ -63,6 +63,41 @@ TEST(CouplingWire, FacesRoundTripAndValidate) {
   EXPECT_EQ(validate(e), "InterfaceFaces.normal[0..1]: length 3, expected a unit normal (face 0)");
 }
 
+// A normal against its face's vertex orientation (docs/protocol.md: a 2D segment a -> b has the outward normal
+// (b_y - a_y, a_x - b_x); 3D faces by the right-hand rule) is refused: a flipped normal turns the load around.
+TEST(CouplingWire, FlippedNormalsAgainstTheVertexOrientationAreRefused) {
+  Faces f = two_faces();  // x = 0 (normal -x) and x = 1 (normal +x), unit height
+  f.nodes_per_face = 2;
+  f.vertex_position = {0, 1, 0, 0, 1, 0, 1, 1};
+  f.face_vertex = {0, 1, 2, 3};  // (0,1) -> (0,0): outward -x; (1,0) -> (1,1): outward +x
+  pb::Envelope e = make_envelope(Role::Solid, "t", 1, 0.0);
+  to_pb(f, *e.mutable_faces());
+  EXPECT_EQ(validate(e), "");
+  f.normal = {-1, 0, -1, 0};  // face 1 flipped
+  to_pb(f, *e.mutable_faces());
+  EXPECT_EQ(validate(e),
+            "InterfaceFaces.normal[2..3]: face 1 has a normal at 180 degrees from the one its vertices give "
+            "(face_vertex order), expected the outward normal of docs/protocol.md (flipped normals?)");
+  // 3D: a unit quad in z = 0 ordered counter-clockwise seen from +z has the normal +z; -z is refused.
+  Faces q;
+  q.dim = 3;
+  q.count = 1;
+  q.centre = {0.5, 0.5, 0};
+  q.normal = {0, 0, 1};
+  q.area = {1};
+  q.velocity = {0, 0, 0};
+  q.normal_stress = {0};
+  q.impedance = {1};
+  q.nodes_per_face = 4;
+  q.vertex_position = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  q.face_vertex = {0, 1, 2, 3};
+  to_pb(q, *e.mutable_faces());
+  EXPECT_EQ(validate(e), "");
+  q.normal = {0, 0, -1};
+  to_pb(q, *e.mutable_faces());
+  EXPECT_NE(validate(e).find("face 0 has a normal at 180 degrees"), std::string::npos) << validate(e);
+}
+
 TEST(CouplingWire, SamplesAndDtValidation) {
   pb::Envelope e = make_envelope(Role::Fluid, "t", 0, 0.0);
   FluidSamples s;
