@@ -212,10 +212,39 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
   if (!rb.rotation_locked) {
     double w0[3];
     angular_velocity(rb, D, rb.Q, rb.L, w0);
+    // The Robin torque -C V_c - K_rot omega_c (added_C, added_Krot; zero without it), omega_c taken as for
+    // the translation: (1 + theta dt I^-1 K_rot) omega' = omega + dt I^-1 (T - C V_c - (1 - theta) K_rot omega).
+    double robin_torque[3] = {rb.added_torque[0], rb.added_torque[1], rb.added_torque[2]};
+    double Krot_trace = 0.0;
+    for (int i = 0; i < 3; ++i) Krot_trace += rb.added_Krot[i][i];
+    if (Krot_trace > 0) {
+      Eigen::Matrix3d Iinv, K, C;
+      for (int j = 0; j < 3; ++j) {
+        const double e[3] = {j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0};
+        double col[3];
+        angular_velocity(rb, D, rb.Q, e, col);
+        for (int i = 0; i < 3; ++i) {
+          Iinv(i, j) = col[i];
+          K(i, j) = rb.added_Krot[i][j];
+          C(i, j) = rb.added_C[i][j];
+        }
+      }
+      const Eigen::Vector3d om0(w0[0], w0[1], w0[2]), vc(Vc[0], Vc[1], Vc[2]);
+      const double r = dt * (Iinv * K).trace();
+      const double theta = r > 0 ? std::max(0.5, 1.0 - 1.0 / r) : 1.0;
+      const Eigen::Vector3d Te = Eigen::Vector3d(T[0], T[1], T[2]) - C * vc;
+      const Eigen::Matrix3d A = Eigen::Matrix3d::Identity() + theta * dt * Iinv * K;
+      const Eigen::Vector3d om1 = A.partialPivLu().solve(om0 + dt * Iinv * (Te - (1.0 - theta) * K * om0));
+      const Eigen::Vector3d rob = -C * vc - K * ((1.0 - theta) * om0 + theta * om1);
+      for (int d = 0; d < 3; ++d) {
+        T[d] += rob[d];
+        robin_torque[d] += rob[d];
+      }
+    }
     for (int d = (D == 2 ? 2 : 0); d < 3; ++d) rb.L[d] += dt * T[d];
     double w[3];
     angular_velocity(rb, D, rb.Q, rb.L, w);
-    for (int d = 0; d < 3; ++d) wb += dt * rb.added_torque[d] * 0.5 * (w0[d] + w[d]);  // its work
+    for (int d = 0; d < 3; ++d) wb += dt * robin_torque[d] * 0.5 * (w0[d] + w[d]);  // its work
     if (D == 3) {  // predictor: inertia at the mid-step orientation
       M3 Rh, Qh;
       const double wh[3] = {0.5 * dt * w[0], 0.5 * dt * w[1], 0.5 * dt * w[2]};

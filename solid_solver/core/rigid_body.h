@@ -32,13 +32,15 @@ struct RigidBody {
   double fixed_value[3] = {0, 0, 0};               // their values [m/s]
   double fixed_ramp = 0.0;                         // linear ramp time of the prescribed values [s]
   bool rotation_locked = false;
-  // The fluid's Robin condition on the body (Simulation::set_face_impedances): translation force b - K V at the
-  // new velocity, taken implicitly; zero when none. The rotation takes the load without its impedance part
-  // (added_torque removes the torque of -Z v_sent from the face pressures): an explicit impedance torque on a
-  // light body would grow by (1 - dt K_rot / I) per step.
-  double added_K[3][3] = {};    // [kg/s]
-  double added_b[3] = {};       // [N]
-  double added_torque[3] = {};  // [N m]
+  // The fluid's Robin condition on the body (Simulation::set_face_impedances), sums over its nodes i with their
+  // K_i, b_i and arms r_i: force b - K V and torque added_torque - C V - K_rot omega at the step's velocities,
+  // taken implicitly (translation first, then rotation); zero when none. added_torque = sum r_i x b_i cancels
+  // the impedance part of the explicit face loads, C = sum [r_i]x K_i, K_rot = sum [r_i]x K_i [r_i]x^T.
+  double added_K[3][3] = {};     // [kg/s]
+  double added_b[3] = {};        // [N]
+  double added_torque[3] = {};   // [N m]
+  double added_C[3][3] = {};     // [kg m/s]
+  double added_Krot[3][3] = {};  // [kg m^2/s]
 };
 
 // Builds the body of block b from the current nodal positions, masses and velocities (its node velocities

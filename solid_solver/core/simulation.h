@@ -72,7 +72,7 @@ class Simulation {
   // The fluid's impedance Z per exterior face (coupling.mode robin, with set_face_pressures): the pressure on a
   // face becomes p + Z (v . n - v_sent), v_sent its normal velocity in the last boundary_faces(), with v the
   // new velocity of its nodes, solved implicitly in each step (docs/methods.md §4.4); faces with Z = 0 keep
-  // the explicit pressure. Rigid blocks take it on their translation. An empty vector removes it.
+  // the explicit pressure. Rigid blocks take it on their translation and rotation. An empty vector removes it.
   void set_face_impedances(const std::vector<double>& z);
   // Through the exterior of the ALE blocks since t = 0 (inflow positive) and the kinetic energy turned into heat.
   const RemapFlux& ale_flux() const { return ale_total_; }

@@ -132,6 +132,8 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
     for (auto& row : rb.added_K) row[0] = row[1] = row[2] = 0.0;
     rb.added_b[0] = rb.added_b[1] = rb.added_b[2] = 0.0;
     rb.added_torque[0] = rb.added_torque[1] = rb.added_torque[2] = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) rb.added_C[i][j] = rb.added_Krot[i][j] = 0.0;
   }
   robin_K_.clear();
   robin_b_.clear();
@@ -165,7 +167,7 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
       }
     }
   }
-  // Rigid blocks: the sums over their nodes act on the translation (the rotation keeps the explicit load).
+  // Rigid blocks: the sums over their nodes act on the translation and, with their arms, on the rotation.
   for (auto& rb : rigid_)
     for (int n : rb.nodes) {
       if (robin_slot_[n] < 0) continue;
@@ -180,6 +182,17 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
       rb.added_torque[0] += r[1] * b[2] - r[2] * b[1];
       rb.added_torque[1] += r[2] * b[0] - r[0] * b[2];
       rb.added_torque[2] += r[0] * b[1] - r[1] * b[0];
+      // [r]x K and [r]x K [r]x^T ([r]x v = r x v).
+      const double X[3][3] = {{0, -r[2], r[1]}, {r[2], 0, -r[0]}, {-r[1], r[0], 0}};
+      double XK[3][3] = {};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int q = 0; q < 3; ++q) XK[i][j] += X[i][q] * K[3 * q + j];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          rb.added_C[i][j] += XK[i][j];
+          for (int q = 0; q < 3; ++q) rb.added_Krot[i][j] += XK[i][q] * X[j][q];
+        }
     }
 }
 
