@@ -1,9 +1,13 @@
 #include "coupler/pressure_predictor.h"
 
+#include <utility>
+
 namespace cosim::coupler {
 
 void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
-  const std::vector<double> p_now = s.pressure, u_now = s.normal_velocity;
+  const std::vector<double> p_now = s.pressure;
+  std::vector<double> u_now;
+  if (with_velocity_) u_now = s.normal_velocity;
   const std::vector<char> wet_now = s.wetted;
   if (have_prev_ && t > prev_time_ && dt > 0 && prev_pressure_.size() == s.pressure.size() &&
       prev_wetted_.size() == s.wetted.size()) {
@@ -22,7 +26,7 @@ void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
   }
   if (!have_prev_ || t > prev_time_) {  // the first of several samples at one time (cycle 0 and 1) counts
     prev_pressure_ = p_now;
-    prev_velocity_ = u_now;
+    prev_velocity_ = std::move(u_now);
     prev_wetted_ = wet_now;
     prev_time_ = t;
     have_prev_ = true;

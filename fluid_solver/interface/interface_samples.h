@@ -132,10 +132,10 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
         if (second) {
           const Values& v2 = far[static_cast<std::size_t>(k)];
           const double pe = v.p + (s1 / h) * (v.p - v2.p);
-          // Only where the extrapolation stays between half and twice the point value (smooth flow); there the
-          // normal velocity too: next to a wall the gas velocity varies over the chamber (a piston's gas moves
-          // with it at the wall and not at the far end), and the Robin and characteristic conditions weigh
-          // v_f - v_s by z_f, which the point value would bias by z_f h du/dn, a damping of the motion.
+          // Only where the extrapolation stays between half and twice the point value (smooth flow); there, with
+          // extrapolate_velocity (coupling.mode robin), the normal velocity too: next to a wall the gas velocity
+          // varies over the chamber (a piston's gas moves with it at the wall and not at the far end), and the
+          // Robin condition weighs v_f - v_s by z_f, which the point value would bias by z_f h du/dn, a damping.
           if (pe > 0.5 * v.p && pe < 2.0 * v.p) {
             p = pe;
             // Kept between the point's value and the wall's: the fluid's velocity at the wall is the wall's.

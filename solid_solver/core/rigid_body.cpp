@@ -1,12 +1,12 @@
 #include "solid_solver/core/rigid_body.h"
 
-#include <Eigen/Dense>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "solid_solver/core/robin_step.h"
 
 namespace cosim::solid {
 
@@ -167,37 +167,16 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
   for (int d = 0; d < 3; ++d) T[d] += rb.added_torque[d];
   // Translation, with prescribed components (their reaction force does work R . Vbar).
   const double ramp = rb.fixed_ramp > 0 ? std::min(1.0, t_half / rb.fixed_ramp) : 1.0;
-  // With the fluid's Robin condition (added_K, added_b; zero without it), as for the nodes
-  // (simulation.cpp, impedance_update): (M I + theta dt K) V' = M V + dt (F + b - (1 - theta) K V) over the
-  // free components, the prescribed ones known.
+  // With the fluid's Robin condition (added_K, added_b; zero without it), as for the nodes (robin_step.h):
+  // (M I + theta dt K) V' = M V + dt (F + b - (1 - theta) K V) over the free components, the prescribed ones known.
   double Vn[3] = {0, 0, 0}, Vc[3] = {0, 0, 0};
-  {
-    double trace = 0.0;
-    for (int i = 0; i < D; ++i) trace += rb.added_K[i][i];
-    const double theta = trace > 0 ? std::max(0.5, 1.0 - rb.mass / (dt * trace)) : 1.0;
-    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d r = Eigen::Vector3d::Zero();
-    for (int i = 0; i < D; ++i)
-      if (rb.fixed[i]) r[i] = ramp * rb.fixed_value[i];
-    for (int i = 0; i < D; ++i) {
-      if (rb.fixed[i]) continue;
-      A(i, i) = rb.mass;
-      r[i] = rb.mass * rb.V[i] + dt * (F[i] + rb.added_b[i]);
-      for (int j = 0; j < D; ++j) {
-        r[i] -= dt * (1.0 - theta) * rb.added_K[i][j] * rb.V[j];
-        if (rb.fixed[j]) {
-          r[i] -= dt * theta * rb.added_K[i][j] * r[j];
-        } else {
-          A(i, j) += dt * theta * rb.added_K[i][j];
-        }
-      }
-    }
-    const Eigen::Vector3d x = A.ldlt().solve(r);
-    for (int d = 0; d < D; ++d) {
-      Vn[d] = x[d];
-      Vc[d] = (1.0 - theta) * rb.V[d] + theta * Vn[d];
-    }
+  unsigned fixed = 0;
+  for (int d = 0; d < D; ++d) {
+    Vn[d] = rb.fixed[d] ? ramp * rb.fixed_value[d] : rb.V[d] + dt * F[d] / rb.mass;
+    if (rb.fixed[d]) fixed |= 1u << d;
   }
+  const double theta = robin_step(D, rb.mass, dt, fixed, &rb.added_K[0][0], rb.added_b, rb.V, Vn);
+  for (int d = 0; d < D; ++d) Vc[d] = (1.0 - theta) * rb.V[d] + theta * Vn[d];
   for (int d = 0; d < D; ++d) {
     double robin = rb.added_b[d];  // the Robin force at the step's velocity, whose work is boundary work
     for (int j = 0; j < D; ++j) robin -= rb.added_K[d][j] * Vc[j];
@@ -230,12 +209,11 @@ void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, doub
         }
       }
       const Eigen::Vector3d om0(w0[0], w0[1], w0[2]), vc(Vc[0], Vc[1], Vc[2]);
-      const double r = dt * (Iinv * K).trace();
-      const double theta = r > 0 ? std::max(0.5, 1.0 - 1.0 / r) : 1.0;
+      const double theta_rot = robin_theta(dt * (Iinv * K).trace());
       const Eigen::Vector3d Te = Eigen::Vector3d(T[0], T[1], T[2]) - C * vc;
-      const Eigen::Matrix3d A = Eigen::Matrix3d::Identity() + theta * dt * Iinv * K;
-      const Eigen::Vector3d om1 = A.partialPivLu().solve(om0 + dt * Iinv * (Te - (1.0 - theta) * K * om0));
-      const Eigen::Vector3d rob = -C * vc - K * ((1.0 - theta) * om0 + theta * om1);
+      const Eigen::Matrix3d A = Eigen::Matrix3d::Identity() + theta_rot * dt * Iinv * K;
+      const Eigen::Vector3d om1 = A.partialPivLu().solve(om0 + dt * Iinv * (Te - (1.0 - theta_rot) * K * om0));
+      const Eigen::Vector3d rob = -C * vc - K * ((1.0 - theta_rot) * om0 + theta_rot * om1);
       for (int d = 0; d < 3; ++d) {
         T[d] += rob[d];
         robin_torque[d] += rob[d];

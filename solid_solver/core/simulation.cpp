@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "solid_solver/ale/rezone.h"
+#include "solid_solver/core/robin_step.h"
 #include "solid_solver/forces/element_kernel.h"
 #include "solid_solver/mesh/element_faces.h"
 
@@ -256,45 +257,6 @@ void Simulation::apply_boundary_conditions() {
   }
 }
 
-namespace {
-// Interface nodes under the fluid's Robin condition (coupling.mode robin; docs/methods.md §4.4). The face
-// pressure J + Z n . v_c at the velocity v_c = (1 - theta) v + theta v' of the step's middle (v at the start,
-// v' at the end; J the fluid's incoming characteristic at t^n), summed over the node's wetted faces with
-// K = sum_f (A_f/k) Z_f n_f n_f^T and b = sum_f (A_f/k) Z_f v_sent,f n_f:
-//   (m I + theta dt K) v' = m v_explicit + dt (b - (1 - theta) K v),
-// where v_explicit = v + dt F/m already holds the face force at v_sent (face_pressure = J + Z v_sent).
-// theta = max(1/2, 1 - m/(dt tr K)): centred (second order) while the fluid's impedance is small against
-// the node's inertia, and tending to backward Euler as it dominates (a light solid), where the amplification
-// (1 - (1 - theta) r)/(1 + theta r) of r = dt tr K/m stays in [0, 1): no ringing, no growth.
-// Prescribed components keep their value.
-void impedance_update(int D, double mass, double dt, std::uint8_t mask, const double* K, const double* b,
-                      const double* v, double* vn) {
-  double trace = 0.0;
-  for (int i = 0; i < D; ++i) trace += K[4 * i];
-  const double theta = trace > 0 ? std::max(0.5, 1.0 - mass / (dt * trace)) : 1.0;
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  for (int i = 0; i < D; ++i) {
-    if (mask & (1u << i)) {
-      r[i] = vn[i];
-      continue;
-    }
-    r[i] = mass * vn[i] + dt * b[i];
-    A(i, i) = mass;
-    for (int j = 0; j < D; ++j) {
-      r[i] -= dt * (1.0 - theta) * K[3 * i + j] * v[j];
-      if (mask & (1u << j)) {
-        r[i] -= dt * theta * K[3 * i + j] * vn[j];
-      } else {
-        A(i, j) += dt * theta * K[3 * i + j];
-      }
-    }
-  }
-  const Eigen::Vector3d x = A.ldlt().solve(r);
-  for (int i = 0; i < D; ++i) vn[i] = x[i];
-}
-}  // namespace
-
 void Simulation::nodal_update(double dt) {
   if (!iface_.empty()) apply_interface_velocities();
   if (!loads_.empty() || !face_p_.empty()) apply_pressure_loads();
@@ -333,8 +295,8 @@ void Simulation::nodal_update(double dt) {
       vn[d] = v[o + d] + dt * Ft * im;
       if (m & (1u << d)) vn[d] = (bramp[n] > 0 ? std::min(1.0, th / bramp[n]) : 1.0) * bval[o + d];
     }
-    if (m & kBcImpedance)
-      impedance_update(D, mass[n], dt, m, &robin_K_[9 * robin_slot_[n]], &robin_b_[3 * robin_slot_[n]], v + o, vn);
+    if (m & kBcImpedance)  // the fluid's Robin condition, implicitly (robin_step.h)
+      robin_step(D, mass[n], dt, m & 7u, &robin_K_[9 * robin_slot_[n]], &robin_b_[3 * robin_slot_[n]], v + o, vn);
     for (int d = 0; d < D; ++d) {
       const double vbar = 0.5 * (v[o + d] + vn[d]);
       e_old += v[o + d] * v[o + d];
