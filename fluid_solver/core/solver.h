@@ -26,6 +26,7 @@
 #include "fluid_solver/core/reconstruction.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/flux/aufs_row.h"
+#include "fluid_solver/flux/cross_row.h"
 #include "fluid_solver/physics/relaxation.h"
 
 namespace cosim::fluid {
@@ -1012,30 +1013,7 @@ class Solver final : public FluidSimulation {
           for (int f = 0; f < len; ++f) fh[f] *= std::min(1.0 - al[f], 1.0 - ar[f]);
         }
         std::fill_n(buf + fvar_lag_left * flen, 6 * flen, 0.0);
-        // Cross contacts (and second-order intra-cell contacts) only where the volume fraction varies.
-        for (int f = 0; f < len; ++f) {
-          const double aRhi = edge_alpha(right_edges, 1, f + right_off);
-          if (al[f] == ar[f] && ar[f] == aRhi) continue;
-          PhaseState<DIM> L[NP], R[NP];
-          double aL, aR;
-          load_face(f, L, R, aL, aR);
-          FaceResult<DIM, NP> res;
-          for (int k = 0; k < NP; ++k) res.flux[k] = PhaseFlux<DIM>{};
-          const double S01 = std::max(0.0, aL - aR), S10 = std::max(0.0, aR - aL);
-          if (S01 > 0.0) cross_pair<DIM, NP, D>(L[0], eos_[0], 0, R[1], eos_[1], S01, res);
-          if (S10 > 0.0) cross_pair<DIM, NP, D>(L[1], eos_[1], 1, R[0], eos_[0], S10, res);
-          for (int k = 0; k < NP; ++k) {
-            buf[fvar_flux(k, 0) * flen + f] += res.flux[k].mass;
-            for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] += res.flux[k].mom[d];
-            buf[fvar_flux(k, 1 + DIM) * flen + f] += res.flux[k].energy;
-          }
-          if (gran_) {  // the dispersed material crossing with a cross contact carries its material energy
-            const PhaseState<DIM>& p1 = S01 > 0.0 ? R[1] : L[1];
-            buf[fvar_heat * flen + f] += res.flux[1].mass * eos_[1].rho_e(p1.rho, p1.p) / p1.rho;
-          }
-          store_lagrangian(buf, flen, f, res.to_left,
-                           add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
-        }
+        cross_faces<D, RM>(len, left_edges, left_off, right_edges, right_off, buf, flen);
       }
       add_particle_stress<D>(len, left_edges, left_off, right_edges, right_off, buf, flen);
       return;
@@ -1067,6 +1045,54 @@ class Solver final : public FluidSimulation {
                          add_intra_cell<D, RM>(R, aR, right_edges, f + right_off, res.to_right));
     }
     add_particle_stress<D>(len, left_edges, left_off, right_edges, right_off, buf, flen);
+  }
+
+  // The cross contacts of a row's faces and the second-order intra-cell contacts of their right cells, over the
+  // span of faces where the volume fraction varies (flux/cross_row.h); outside it they are zero.
+  template <int D, ReconMode RM>
+  void cross_faces(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
+                   double* buf, std::size_t flen) const {
+    if constexpr (NP == 2) {
+      const std::size_t elen = edge_row_len();
+      const double* al = left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
+      const double* ar = right_edges + Lay::palpha * elen + right_off;
+      const double* arhi = right_edges + (Lay::kPrim + Lay::palpha) * elen + right_off;
+      const bool intra = RM != ReconMode::First;
+      const auto varies = [&](int f) { return al[f] != ar[f] || (intra && ar[f] != arhi[f]); };
+      int lo = 0, hi = len;
+      while (lo < hi && !varies(lo)) ++lo;
+      while (hi > lo && !varies(hi - 1)) --hi;
+      if (lo == hi) return;
+      // Views of the span: phase k's (rho, u, p, c) on the left cells' hi edges, the right cells' lo and hi edges.
+      const double *Lv[2][Lay::kPrimPerPhase], *Rv[2][Lay::kPrimPerPhase], *Hv[2][Lay::kPrimPerPhase];
+      for (int k = 0; k < 2; ++k)
+        for (int q = 0; q < Lay::kPrimPerPhase; ++q) {
+          const int v = Lay::rho(k) + q;
+          Lv[k][q] = left_edges + (Lay::kPrim + v) * elen + left_off + lo;
+          Rv[k][q] = right_edges + v * elen + right_off + lo;
+          Hv[k][q] = right_edges + (Lay::kPrim + v) * elen + right_off + lo;
+        }
+      double *f0[2 + DIM], *f1[2 + DIM], *lagl[3], *lagr[3];
+      for (int q = 0; q < 2 + DIM; ++q) {
+        f0[q] = buf + fvar_flux(0, q) * flen + lo;
+        f1[q] = buf + fvar_flux(1, q) * flen + lo;
+      }
+      for (int q = 0; q < 3; ++q) {
+        lagl[q] = buf + (fvar_lag_left + q) * flen + lo;
+        lagr[q] = buf + (fvar_lag_right + q) * flen + lo;
+      }
+      CrossRowOut out;
+      out.flux0 = f0;
+      out.flux1 = f1;
+      out.lag_left = lagl;
+      out.lag_right = lagr;
+      if (gran_) out.heat = buf + fvar_heat * flen + lo;
+      const int n = hi - lo;
+      cross_row<DIM, D, false>(n, Lv[0], Lv[1], Rv[0], Rv[1], al + lo, ar + lo, eos_, out);
+      if (intra) cross_row<DIM, D, true>(n, Rv[0], Rv[1], Hv[0], Hv[1], ar + lo, arhi + lo, eos_, out);
+    } else {
+      (void)len, (void)left_edges, (void)left_off, (void)right_edges, (void)right_off, (void)buf, (void)flen;
+    }
   }
 
   // A dispersed phase's collision stress Pi(alpha) at the faces of a row (docs/methods.md §2.8): the centred
