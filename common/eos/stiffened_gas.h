@@ -30,8 +30,12 @@ struct StiffenedGas {
     return (p + pinf - cold) / ((gamma - 1.0) * rho * cv);
   }
   // The same from the specific internal energy: (e - q - pinf / rho - a0 rho^(gamma-1) / (gamma-1)) / cv.
-  double temperature_from_e(double rho, double e) const {
-    const double cold = a0 == 0.0 ? 0.0 : a0 * std::pow(rho, gamma - 1.0) / (gamma - 1.0);
+  double temperature_from_e(double rho, double e) const { return temperature_from_e(rho, e, datum_power(rho)); }
+  // rho^(gamma-1), the density factor of the temperature datum's energy (1 where a0 = 0, without pow), and the
+  // temperature with it given: for row loops that take the power out of their vectorised part.
+  double datum_power(double rho) const { return a0 == 0.0 ? 1.0 : std::pow(rho, gamma - 1.0); }
+  double temperature_from_e(double rho, double e, double rho_gm1) const {
+    const double cold = a0 == 0.0 ? 0.0 : a0 * rho_gm1 / (gamma - 1.0);
     return (e - q - pinf / rho - cold) / cv;
   }
   // The density at (p, T): the root of (gamma-1) cv T rho + a0 rho^gamma = p + pinf, unique for a0 >= 0 (the

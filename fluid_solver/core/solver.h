@@ -27,6 +27,7 @@
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/flux/aufs_row.h"
 #include "fluid_solver/flux/cross_row.h"
+#include "fluid_solver/physics/exchange_row.h"
 #include "fluid_solver/physics/relaxation.h"
 
 namespace cosim::fluid {
@@ -645,6 +646,12 @@ class Solver final : public FluidSimulation {
     const bool drag = ex.velocity == VelocityRelaxation::Drag;
     if (!drag && !ex.heat_transfer && !gran_) return;
     double dummy = 0;
+    if constexpr (NP == 2)
+      if (!drag || ex.drag_law == DragLaw::AkhatovVainshtein) {  // the row kernel (physics/exchange_row.h)
+        if (drag) exchange_rows_as<true>(dt);
+        else exchange_rows_as<false>(dt);
+        return;
+      }
     for_each_row(
         [&](std::size_t base, int len, double&) {
           for (int i = 0; i < len; ++i) {
@@ -665,6 +672,34 @@ class Solver final : public FluidSimulation {
           // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
           // (vectorised row pass).
           if (ex.pressure_relaxation) relax_cells(base, len, false, true);
+        },
+        dummy);
+  }
+
+  template <bool DRAG>
+  void exchange_rows_as(double dt) {
+    const bool heat = scene_.exchange.heat_transfer;
+    if (gran_ && heat) exchange_rows<DRAG, true, true>(dt);
+    else if (gran_) exchange_rows<DRAG, false, true>(dt);
+    else if (heat) exchange_rows<DRAG, true, false>(dt);
+    else exchange_rows<DRAG, false, false>(dt);
+  }
+  template <bool DRAG, bool HEAT, bool GRAN>
+  void exchange_rows(double dt) {
+    double dummy = 0;
+    for_each_row(
+        [&](std::size_t base, int len, double&) {
+          ExchangeRowViews<DIM> v;
+          v.alpha = U_.var(Lay::alpha) + base;
+          for (int k = 0; k < 2; ++k) {
+            v.m[k] = U_.var(Lay::mass(k)) + base;
+            for (int d = 0; d < DIM; ++d) v.mom[k][d] = U_.var(Lay::mom(k, d)) + base;
+            v.E[k] = U_.var(Lay::energy(k)) + base;
+          }
+          if (GRAN) v.heat = U_.var(Lay::heat) + base;
+          exchange_row<DIM, DRAG, HEAT, GRAN>(len, v, eos_, scene_.exchange, dt,
+                                              scratch_[static_cast<std::size_t>(omp_get_thread_num())].exchange);
+          if (scene_.exchange.pressure_relaxation) relax_cells(base, len, false, true);
         },
         dummy);
   }
@@ -721,6 +756,7 @@ class Solver final : public FluidSimulation {
     double* edges[2] = {nullptr, nullptr};
     double* mini = nullptr;
     double* face1 = nullptr;
+    double* exchange = nullptr;                   // exchange_row's scratch (kExchangeScratch rows of cells)
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
@@ -729,12 +765,14 @@ class Solver final : public FluidSimulation {
     const std::size_t fsize = static_cast<std::size_t>(kFaceVars) * flen, esize = 2 * Lay::kPrim * elen;
     scratch_.resize(static_cast<std::size_t>(omp_get_max_threads()));
     for (auto& sc : scratch_) {
-      sc.data.assign(fsize + 3 * esize + kFaceVars, 0.0);
+      const std::size_t xsize = static_cast<std::size_t>(kExchangeScratch) * static_cast<std::size_t>(g_.n[0]);
+      sc.data.assign(fsize + 3 * esize + kFaceVars + xsize, 0.0);
       sc.faces = sc.data.data();
       sc.edges[0] = sc.faces + fsize;
       sc.edges[1] = sc.edges[0] + esize;
       sc.mini = sc.edges[1] + esize;
       sc.face1 = sc.mini + esize;
+      sc.exchange = sc.face1 + kFaceVars;
     }
   }
 
