@@ -39,46 +39,79 @@ class BoundaryFiller {
       }
   }
 
-  void fill(FieldArray& W) const {
-    for (int d = 0; d < DIM; ++d)
+  // x_done: the x ghosts are filled already (fill_x_row on every interior row).
+  void fill(FieldArray& W, bool x_done = false) const {
+    for (int d = x_done ? 1 : 0; d < DIM; ++d)
       for (int side = 0; side < 2; ++side) fill_side(W, d, side);
+  }
+  // The x ghosts of the interior row starting at cell `base`, every variable: fill's first direction one row at a
+  // time, for a pass that has the row in cache (the primitives).
+  void fill_x_row(FieldArray& W, std::size_t base) const {
+    const int n = g_.n[0];
+    for (int side = 0; side < 2; ++side) {
+      const BoundaryKind kind = kind_[0][side];
+      for (int layer = 1; layer <= Grid<DIM>::NG; ++layer) {
+        const int ghost = side == 0 ? -layer : n - 1 + layer;
+        const std::size_t g = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(base) + ghost);
+        const std::size_t src = base + static_cast<std::size_t>(source(kind, n, side, layer));
+        for (int v = 0; v < W.vars; ++v) {
+          double* w = W.var(v);
+          w[g] = kind == BoundaryKind::Inflow ? inflow_[0][side][static_cast<std::size_t>(v)] : w[src];
+        }
+        if (kind == BoundaryKind::Wall)
+          for (int k = 0; k < NP; ++k) W.var(Lay::vel(k, 0))[g] = -W.var(Lay::vel(k, 0))[src];
+      }
+    }
   }
 
  private:
+  // Per variable and ghost layer, the layer's cells in memory order (x fastest): the copies stream.
   void fill_side(FieldArray& W, int d, int side) const {
+    constexpr int NG = Grid<DIM>::NG;
     const int n = g_.n[d];
-    const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;  // the two other axes
     // An axis filled before this one (e < d, active) is swept over its ghost layers as well.
-    const int g1 = e1 < d && e1 < DIM ? Grid<DIM>::NG : 0, g2 = e2 < d && e2 < DIM ? Grid<DIM>::NG : 0;
+    int lo[3], hi[3];
+    for (int e = 0; e < 3; ++e) {
+      const bool before = e < d && e < DIM;
+      lo[e] = before ? -NG : 0;
+      hi[e] = before ? g_.n[e] + NG : g_.n[e];
+    }
     const BoundaryKind kind = kind_[d][side];
-    for (int b = -g2; b < g_.n[e2] + g2; ++b)
-      for (int a = -g1; a < g_.n[e1] + g1; ++a)
-        for (int layer = 1; layer <= Grid<DIM>::NG; ++layer) {
-          const int ghost = side == 0 ? -layer : n - 1 + layer;
-          int src = 0;
-          switch (kind) {
-            case BoundaryKind::Transmissive: src = side == 0 ? 0 : n - 1; break;
-            case BoundaryKind::Wall: src = side == 0 ? layer - 1 : n - layer; break;
-            case BoundaryKind::Periodic: src = side == 0 ? n - layer : layer - 1; break;
-            case BoundaryKind::Inflow: src = 0; break;
+    for (int layer = 1; layer <= NG; ++layer) {
+      const int ghost = side == 0 ? -layer : n - 1 + layer;
+      const int src = source(kind, n, side, layer);
+      lo[d] = ghost;
+      hi[d] = ghost + 1;
+      const std::ptrdiff_t shift = static_cast<std::ptrdiff_t>(src - ghost) * g_.stride[d];
+      const int len = hi[0] - lo[0];
+      for (int v = 0; v < W.vars; ++v) {
+        double* w = W.var(v);
+        bool flip = false;  // a wall mirrors the normal velocities
+        for (int k = 0; k < NP; ++k) flip = flip || (kind == BoundaryKind::Wall && v == Lay::vel(k, d));
+        const double value = kind == BoundaryKind::Inflow ? inflow_[d][side][static_cast<std::size_t>(v)] : 0.0;
+        for (int c = lo[2]; c < hi[2]; ++c)
+          for (int b = lo[1]; b < hi[1]; ++b) {
+            double* row = w + g_.index(lo[0], b, c);
+            if (kind == BoundaryKind::Inflow)
+              for (int i = 0; i < len; ++i) row[i] = value;
+            else if (flip)
+              for (int i = 0; i < len; ++i) row[i] = -row[i + shift];
+            else
+              for (int i = 0; i < len; ++i) row[i] = row[i + shift];
           }
-          const std::size_t cg = at(d, ghost, e1, a, e2, b), cs = at(d, src, e1, a, e2, b);
-          if (kind == BoundaryKind::Inflow) {
-            for (int v = 0; v < W.vars; ++v) W.var(v)[cg] = inflow_[d][side][v];
-            continue;
-          }
-          for (int v = 0; v < W.vars; ++v) W.var(v)[cg] = W.var(v)[cs];
-          if (kind == BoundaryKind::Wall)
-            for (int k = 0; k < NP; ++k) W.var(Lay::vel(k, d))[cg] = -W.var(Lay::vel(k, d))[cs];
-        }
+      }
+    }
   }
 
-  std::size_t at(int d, int id, int e1, int ia, int e2, int ib) const {
-    int ijk[3];
-    ijk[d] = id;
-    ijk[e1] = ia;
-    ijk[e2] = ib;
-    return g_.index(ijk[0], ijk[1], ijk[2]);
+  // The interior cell (index along the direction of n cells) that ghost layer `layer` of a side copies.
+  static int source(BoundaryKind kind, int n, int side, int layer) {
+    switch (kind) {
+      case BoundaryKind::Transmissive: return side == 0 ? 0 : n - 1;
+      case BoundaryKind::Wall: return side == 0 ? layer - 1 : n - layer;
+      case BoundaryKind::Periodic: return side == 0 ? n - layer : layer - 1;
+      case BoundaryKind::Inflow: return 0;
+    }
+    return 0;
   }
 
   Grid<DIM> g_;

@@ -291,7 +291,8 @@ class Solver final : public FluidSimulation {
     return std::max(cs, cg);
   }
 
-  // Interior primitives from conservative U; throws StateError naming the first bad cell.
+  // Interior primitives from conservative U, and the x ghosts of the rows; throws StateError naming the first bad
+  // cell.
   void compute_primitives(const FieldArray& U) {
     if (primitives_valid_ && &U == &U_) return;
     double bad = 0.0;
@@ -335,6 +336,7 @@ class Solver final : public FluidSimulation {
               acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
             }
           }
+          bc_.fill_x_row(W_, base);  // the row's x ghosts while it is in cache (stage fills the others)
         },
         bad);
     if (bad > 0.0) report_bad_cell(U);
@@ -372,7 +374,7 @@ class Solver final : public FluidSimulation {
   void stage(double dt, double a, double b) {
     compute_primitives(U_);
     primitives_valid_ = false;
-    bc_.fill(W_);
+    bc_.fill(W_, /*x_done=*/true);
     if (emb_.active) {
       fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
       fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
