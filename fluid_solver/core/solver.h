@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "common/app/threads.h"
 #include "fluid_solver/core/boundary.h"
@@ -106,34 +107,10 @@ class Solver final : public FluidSimulation {
   double stable_dt() override {
     compute_primitives(U_);
     double smax = 0.0;
-    const double* Wp[Lay::kPrim];
-    for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
-    const std::uint8_t* kind = emb_.active ? emb_.kind.data() : nullptr;
-    for_each_row(
-        [&](std::size_t base, int len, double& acc) {
-          for (int i = 0; i < len; ++i) {
-            const std::size_t c = base + i;
-            if (kind && !is_flow_cell(kind[c])) continue;  // the fluid domain only: ghost and solid states are not flow
-            for (int k = 0; k < NP; ++k) {
-              double s = 0;
-              // A trace phase is advected with the carrier's pressure: its sound speed does not limit the step; a
-              // dispersed phase's waves are its compaction waves (docs/methods.md §2.7-2.8).
-              const double rho = Wp[Lay::rho(k)][c];
-              double cs;
-              if constexpr (NP == 2) {
-                const double ak = k == 0 ? Wp[Lay::palpha][c] : 1.0 - Wp[Lay::palpha][c];
-                cs = k == 1 && scene_.exchange.dispersed ? dispersed_wave_speed(ak, rho, Wp, c)
-                     : ak < trace_[k]                    ? 0.0
-                                                         : eos_[k].sound_speed(rho, Wp[Lay::pres(k)][c]);
-              } else {
-                cs = eos_[k].sound_speed(rho, Wp[Lay::pres(k)][c]);
-              }
-              for (int d = 0; d < DIM; ++d) s += (std::abs(Wp[Lay::vel(k, d)][c]) + cs) / g_.dx[d];
-              acc = std::max(acc, s);
-            }
-          }
-        },
-        smax);
+    const bool dispersed = NP == 2 && scene_.exchange.dispersed, b3 = scene_.exchange.particle_stress.beta == 3.0;
+    if (!dispersed) smax = max_wave_rate<false, false, 0>();
+    else if (gran_) smax = b3 ? max_wave_rate<true, true, 3>() : max_wave_rate<true, true, 0>();
+    else smax = b3 ? max_wave_rate<true, false, 3>() : max_wave_rate<true, false, 0>();
     if (emb_.active) {  // a moving body must not cross more than a CFL fraction of a cell per step
       double w = 0;
       for (int d = 0; d < DIM; ++d) w += emb_.max_wall_speed / g_.dx[d];
@@ -142,9 +119,72 @@ class Solver final : public FluidSimulation {
     return scene_.cfl / smax;
   }
 
+  // max over the flow cells and phases of sum_d (|u_d| + c) / dx_d. A trace phase is advected with the carrier's
+  // pressure: its sound speed does not limit the step; a dispersed phase's waves are its compaction waves and the
+  // sound of its granular gas (docs/methods.md §2.7-2.9; B: the collision stress's integer exponent, 0 any).
+  template <bool DISPERSED, bool GRAN, int B>
+  double max_wave_rate() {
+    double smax = 0.0;
+    const ParticleStress& ps = scene_.exchange.particle_stress;
+    const GranularGas& gr = scene_.exchange.granular;
+    for_each_row(
+        [&](std::size_t base, int len, double& acc) {
+          const double* w[Lay::kPrim];  // the row's views in locals, so that the loop vectorises
+          for (int v = 0; v < Lay::kPrim; ++v) w[v] = v < nprim_ ? W_.var(v) + base : nullptr;
+          const std::uint8_t* kind = emb_.active ? emb_.kind.data() + base : nullptr;
+          double dx[DIM], trace[NP];
+          for (int d = 0; d < DIM; ++d) dx[d] = g_.dx[d];
+          for (int k = 0; k < NP; ++k) trace[k] = trace_[k];
+          const auto rate = [&](int c) {
+            double r = 0.0;
+            for (int k = 0; k < NP; ++k) {
+              const double rho = w[Lay::rho(k)][c];
+              double cs = std::sqrt(eos_[k].gamma * (w[Lay::pres(k)][c] + eos_[k].pinf) / rho);
+              if constexpr (NP == 2) {
+                const double ak = k == 0 ? w[Lay::palpha][c] : 1.0 - w[Lay::palpha][c];
+                if (DISPERSED && k == 1) {
+                  double pi, dpi;
+                  ps.eval<B>(ak, pi, dpi);
+                  cs = std::sqrt(dpi / rho);
+                  if constexpr (GRAN) {
+                    double pg, cg;
+                    gr.pressure_and_speed(ak, rho, w[Lay::pgran][c], pg, cg);
+                    cs = std::max(cs, cg);
+                  }
+                } else {
+                  cs = ak < trace[k] ? 0.0 : cs;
+                }
+              }
+              double s = 0;
+              for (int d = 0; d < DIM; ++d) s += (std::abs(w[Lay::vel(k, d)][c]) + cs) / dx[d];
+              r = std::max(r, s);
+            }
+            return r;
+          };
+          // The rates into a scratch row (vectorised), then their max (a max reduction does not vectorise).
+          double* r = scratch_[static_cast<std::size_t>(omp_get_thread_num())].exchange;
+          if (kind) {  // the fluid domain only: ghost and solid states are not flow
+#pragma GCC ivdep
+            for (int c = 0; c < len; ++c) r[c] = is_flow_cell(kind[c]) ? 1.0 : 0.0;
+#pragma GCC ivdep
+            for (int c = 0; c < len; ++c) {
+              const double rc = rate(c);  // evaluated everywhere (no branch), kept in flow cells
+              r[c] = r[c] != 0.0 ? rc : 0.0;
+            }
+          } else {
+#pragma GCC ivdep
+            for (int c = 0; c < len; ++c) r[c] = rate(c);
+          }
+          double m = acc;
+          for (int c = 0; c < len; ++c) m = std::max(m, r[c]);
+          acc = m;
+        },
+        smax);
+    return smax;
+  }
+
   void advance(double dt) override {
-    U0_.data = U_.data;
-    step_inflow_.fill(0.0);
+    step_inflow_.fill(0.0);  // the first stage (a = 0) keeps U in U0 as it updates it
     if (scene_.integrator == TimeIntegrator::RK2) {
       stage(dt, 0.0, 1.0);
       stage(dt, 0.5, 0.5);
@@ -282,14 +322,6 @@ class Solver final : public FluidSimulation {
   double granular_per_mass(const FieldArray& U, std::size_t c) const {
     return granular_energy(U, c) / U.var(Lay::mass(NP - 1))[c];
   }
-  // The fastest wave of a dispersed phase: its compaction waves, or the sound of its granular gas.
-  double dispersed_wave_speed(double a, double rho, const double* const* Wp, std::size_t c) const {
-    const double cs = scene_.exchange.particle_stress.wave_speed(a, rho);
-    if (!gran_) return cs;
-    double pg, cg;
-    scene_.exchange.granular.pressure_and_speed(a, rho, Wp[Lay::pgran][c], pg, cg);
-    return std::max(cs, cg);
-  }
 
   // Interior primitives from conservative U, and the x ghosts of the rows; throws StateError naming the first bad
   // cell.
@@ -302,40 +334,53 @@ class Solver final : public FluidSimulation {
     for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
     for_each_row(
         [&](std::size_t base, int len, double& acc) {
-          for (int i = 0; i < len; ++i) {
-            const std::size_t c = base + i;
-            double a0 = 1.0;
-            if constexpr (NP == 2) {
-              a0 = Uc[Lay::alpha][c];
-              Wp[Lay::palpha][c] = a0;
-              acc = (a0 > 0.0 && a0 < 1.0) ? acc : 1.0;
-            }
-            for (int k = 0; k < NP; ++k) {
-              const double a = k == 0 ? a0 : 1.0 - a0;
-              const double m = Uc[Lay::mass(k)][c];
-              const double rho = m / a;
-              const double inv = 1.0 / m;
-              double q = 0;
-              for (int d = 0; d < DIM; ++d) {
-                const double u = Uc[Lay::mom(k, d)][c] * inv;
-                Wp[Lay::vel(k, d)][c] = u;
-                q += u * u;
+          // The row's views in locals: loop-invariant to the compiler, so that the loop vectorises.
+          const double* uc[Lay::kCons];
+          double* wp[Lay::kPrim];
+          for (int v = 0; v < Lay::kCons; ++v) uc[v] = v < ncons_ ? Uc[v] + base : nullptr;
+          for (int v = 0; v < Lay::kPrim; ++v) wp[v] = v < nprim_ ? Wp[v] + base : nullptr;
+          double bad_row = 0.0;
+          // GRAN as a compile-time constant: a run-time select of the material energy does not vectorise.
+          const auto row = [&](auto gran_tag) {
+            constexpr bool gran = decltype(gran_tag)::value;
+#pragma GCC ivdep
+            for (int c = 0; c < len; ++c) {
+              double a0 = 1.0;
+              if constexpr (NP == 2) {
+                a0 = uc[Lay::alpha][c];
+                wp[Lay::palpha][c] = a0;
+                bad_row = (a0 > 0.0 && a0 < 1.0) ? bad_row : 1.0;
               }
-              double rhoe = Uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
-              if constexpr (NP == 2)
-                if (k == 1 && gran_) {  // its material energy apart, and k from what is left (§2.9)
-                  const double h = Uc[Lay::heat][c] / a;
-                  Wp[Lay::pgran][c] = (rhoe - h) / rho;
-                  rhoe = h;
+              for (int k = 0; k < NP; ++k) {
+                const double a = k == 0 ? a0 : 1.0 - a0;
+                const double m = uc[Lay::mass(k)][c];
+                const double rho = m / a;
+                const double inv = 1.0 / m;
+                double q = 0;
+                for (int d = 0; d < DIM; ++d) {
+                  const double u = uc[Lay::mom(k, d)][c] * inv;
+                  wp[Lay::vel(k, d)][c] = u;
+                  q += u * u;
                 }
-              const auto& e = eos_[k];
-              const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
-              const double c2 = e.gamma * (p + e.pinf) / rho;
-              Wp[Lay::rho(k)][c] = rho;
-              Wp[Lay::pres(k)][c] = p;
-              acc = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? acc : 1.0;  // also false for NaN
+                double rhoe = uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+                if constexpr (NP == 2)
+                  if (k == 1 && gran) {  // its material energy apart, and k from what is left (§2.9)
+                    const double h = uc[Lay::heat][c] / a;
+                    wp[Lay::pgran][c] = (rhoe - h) / rho;
+                    rhoe = h;
+                  }
+                const auto& e = eos_[k];
+                const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
+                const double c2 = e.gamma * (p + e.pinf) / rho;
+                wp[Lay::rho(k)][c] = rho;
+                wp[Lay::pres(k)][c] = p;
+                bad_row = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? bad_row : 1.0;  // also false for NaN
+              }
             }
-          }
+          };
+          if (gran_) row(std::true_type{});
+          else row(std::false_type{});
+          acc = std::max(acc, bad_row);
           bc_.fill_x_row(W_, base);  // the row's x ghosts while it is in cache (stage fills the others)
         },
         bad);
@@ -387,7 +432,7 @@ class Solver final : public FluidSimulation {
       step_inflow_[i] = b * (step_inflow_[i] + dt * f);
     }
     double* Uv[Lay::kCons];
-    const double* U0v[Lay::kCons];
+    double* U0v[Lay::kCons];
     const double* Rv[Lay::kCons];
     for (int v = 0; v < ncons_; ++v) {
       Uv[v] = U_.var(v);
@@ -399,8 +444,9 @@ class Solver final : public FluidSimulation {
         [&](std::size_t base, int len, double&) {
           for (int v = 0; v < ncons_; ++v) {
             double* u = Uv[v] + base;
-            const double* u0 = U0v[v] + base;
+            double* u0 = U0v[v] + base;
             const double* r = Rv[v] + base;
+            if (a == 0.0) std::copy(u, u + len, u0);  // the step's start state, for the later stages
             if (emb_.active) {
               // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
               // the interior of a body is never read (fused here: no extra pass over the grid).
