@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <omp.h>
+
 #include <chrono>
 
 #include "fluid_solver/embedded/geometry.h"
@@ -41,7 +43,7 @@ fluid:
 
 // Geometry build time per cycle [s] of `s` moving by a fraction of a cell per cycle (incremental level sets).
 double geometry_seconds_3d(const Grid<3>& g, embedded::Surface s, const embedded::Vec3& cells_per_cycle, bool prisms,
-                           int cycles) {
+                           int cycles, embedded::GeometryTiming* parts = nullptr) {
   embedded::GeometryOptions opt;
   opt.flat_face_prisms = prisms;
   embedded::EmbeddedGeometry<3> e;
@@ -53,6 +55,14 @@ double geometry_seconds_3d(const Grid<3>& g, embedded::Surface s, const embedded
     embedded::move_surface(s, 1.0);
     embedded::build_geometry(g, s, opt, e);
     total += e.timing.total;
+    if (parts) {
+      parts->surface += e.timing.surface / cycles;
+      parts->clip += e.timing.clip / cycles;
+      parts->distance += e.timing.distance / cycles;
+      parts->categories += e.timing.categories / cycles;
+      parts->image_points += e.timing.image_points / cycles;
+      parts->side_images += e.timing.side_images / cycles;
+    }
   }
   return total / cycles;
 }
@@ -67,9 +77,10 @@ double seconds_for(FluidSimulation& sim, int steps) {
 
 int main(int argc, char** argv) {
   CLI::App app{"embedded-boundary cost per cycle"};
-  int n = 512, steps = 20;
+  int n = 512, steps = 20, threads = omp_get_max_threads();
   app.add_option("--cells", n);
   app.add_option("--steps", steps);
+  app.add_option("--threads", threads, "threads of the 3D geometry (the 2D cycles run on one)");
   CLI11_PARSE(app, argc, argv);
   auto plain = make_simulation(parse_fluid_scene(scene(n, 0, 0)));
   const double t_plain = seconds_for(*plain, steps);
@@ -125,13 +136,32 @@ int main(int argc, char** argv) {
        {16, 16, 16},
        {0.3, 0.1, 0.2},
        "box 0.4^3, 16^3 cells"},
+      {{120, 120, 120},
+       {0, 0, 0},
+       {1, 1, 1},
+       {0.45, 0.25, 0.25},
+       {0.55, 0.75, 0.75},
+       {10, 40, 40},
+       {0.002, 0.001, 0.001},
+       "tungsten_blast_3d's target, 10 x 40 x 40"},
   };
+  omp_set_num_threads(threads);
+  std::vector<embedded::GeometryTiming> parts;
   for (const Case& c : cases) {
     const Grid<3> g(c.grid, c.domain_lo, c.domain_hi);
     const embedded::Surface box = embedded::make_subdivided_box(3, c.lo, c.hi, c.mesh);
-    const double on = geometry_seconds_3d(g, box, c.cells_per_cycle, true, steps),
+    parts.emplace_back();
+    const double on = geometry_seconds_3d(g, box, c.cells_per_cycle, true, steps, &parts.back()),
                  off = geometry_seconds_3d(g, box, c.cells_per_cycle, false, steps);
     fmt::print("| {} x {} x {} | {} | {} | {:.3f} | {:.3f} | {:.2f} |\n", c.grid[0], c.grid[1], c.grid[2], c.name,
                box.faces.size(), 1e3 * on, 1e3 * off, off / on);
+  }
+  fmt::print(
+      "\nWith prisms, per part [ms]:\n\n| body | surface | clip | distance | categories | image points | side "
+      "images |\n|---|---|---|---|---|---|---|\n");
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto& t = parts[i];
+    fmt::print("| {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n", cases[i].name, 1e3 * t.surface,
+               1e3 * t.clip, 1e3 * t.distance, 1e3 * t.categories, 1e3 * t.image_points, 1e3 * t.side_images);
   }
 }

@@ -5,6 +5,8 @@
 // the slab search of lattice.h: O(cut cells) box tests per face.
 #pragma once
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -76,6 +78,96 @@ inline bool owns_piece(const std::vector<Vec3>& pts, const Vec3& lo, const Vec3&
 
 }  // namespace detail
 
+// The pieces of face f in the cells it crosses (clip_surface), appended to segments and points.
+template <int DIM>
+void clip_face(const Surface& s, const SurfaceTopology& topo, std::size_t f, const Lattice<DIM>& centres,
+               const Lattice<DIM>& nodes, const Vec3& half, const Vec3& tol, double hmin, double min_measure,
+               const DomainWallFaces* walls, std::vector<Vec3>& poly, std::vector<Vec3>& scratch,
+               std::vector<InterfaceSegment>& segments, std::vector<Vec3>& points, std::size_t& tests) {
+  if (walls && walls->skips(f)) return;
+  const auto& fc = s.faces[f];
+  const Vec3& n = topo.face_normal[f];
+  const int nid = DIM == 1 ? 1 : DIM;
+  Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;
+  for (int k = 1; k < nid; ++k)
+    for (std::size_t d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
+      hi[d] = std::max(hi[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
+    }
+  const Vec3& a = s.vertices[static_cast<std::size_t>(fc[0])];
+  // A cell box meets the face's plane iff |n.(x_c - a)| <= sum_d |n_d| dx_d / 2.
+  double r = 0;
+  for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) r += std::abs(n[d]) * half[d];
+  r += 1e-12 * hmin;
+  for_each_in_slab(centres, lo, hi, half, n, dot(n, a), r, [&](int I, int J, int K) {
+    ++tests;
+    const Vec3 blo = nodes.point(I, J, K), bhi = nodes.point(I + 1, DIM > 1 ? J + 1 : J, DIM > 2 ? K + 1 : K);
+    Vec3 c{0, 0, 0};
+    double measure = 0;
+    std::array<double, 3> bary{1, 0, 0};
+    if constexpr (DIM == 1) {
+      if (a[0] < blo[0] - tol[0] || a[0] > bhi[0] + tol[0]) return;
+      poly.assign(1, a);
+      c = a;
+      measure = 1;
+    } else if constexpr (DIM == 2) {
+      const Vec3& b = s.vertices[static_cast<std::size_t>(fc[1])];
+      const Vec3 delta = b - a;
+      double t0 = 0, t1 = 1;
+      for (std::size_t d = 0; d < 2; ++d) {
+        // Along a grid line up to round-off (a moving wall that arrives on it): in both cells, owns_piece()
+        // decides; otherwise the piece would fall between them and the cut cell would be lost.
+        if (std::abs(delta[d]) <= tol[d]) {
+          if (std::max(a[d], b[d]) < blo[d] - tol[d] || std::min(a[d], b[d]) > bhi[d] + tol[d]) return;
+          continue;
+        }
+        double ta = (blo[d] - a[d]) / delta[d], tb = (bhi[d] - a[d]) / delta[d];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+      }
+      if (!(t1 > t0)) return;
+      measure = (t1 - t0) * topo.face_measure[f];
+      poly = {a + t0 * delta, a + t1 * delta};
+      c = 0.5 * (poly[0] + poly[1]);
+      const double tm = 0.5 * (t0 + t1);
+      bary = {1 - tm, tm, 0};
+    } else {
+      poly = {a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]};
+      for (std::size_t d = 0; d < 3 && poly.size() >= 3; ++d) {
+        detail::clip_against(poly, scratch, d, blo[d], -1.0, tol[d]);
+        if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0, tol[d]);
+      }
+      if (poly.size() < 3) return;
+      // area-weighted centroid of the fan triangles
+      Vec3 acc{0, 0, 0};
+      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+        const double ak = 0.5 * dot(cross(poly[k] - poly[0], poly[k + 1] - poly[0]), n);
+        measure += ak;
+        acc = acc + (ak / 3.0) * (poly[0] + poly[k] + poly[k + 1]);
+      }
+      if (!(measure > 0)) return;
+      c = (1.0 / measure) * acc;
+      bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])],
+                                 s.vertices[static_cast<std::size_t>(fc[2])]);
+    }
+    if (measure <= min_measure) return;
+    if (!detail::owns_piece(poly, blo, bhi, n, DIM, tol)) return;
+    InterfaceSegment seg;
+    seg.cell = centres.index(I, J, K);
+    seg.ijk = {I - Grid<DIM>::offset(0), J - Grid<DIM>::offset(1), K - Grid<DIM>::offset(2)};
+    seg.face = static_cast<int>(f);
+    seg.center = c;
+    seg.normal = n;
+    seg.area = measure;
+    seg.velocity = face_velocity(s, static_cast<int>(f), bary);
+    seg.first_point = static_cast<int>(points.size());
+    seg.point_count = static_cast<int>(poly.size());
+    points.insert(points.end(), poly.begin(), poly.end());
+    segments.push_back(seg);
+  });
+}
+
 // Clips all faces of s to the cells of the padded grid. Pieces outside the padded grid are dropped, and so
 // are the faces on the domain wall (`walls`, geometry.h: domain_wall_faces). `tests` counts the clip tests.
 template <int DIM>
@@ -93,90 +185,38 @@ void clip_surface(const Grid<DIM>& g, const Surface& s, const SurfaceTopology& t
     hmin = std::min(hmin, g.dx[d]);
   }
   const double min_measure = DIM == 3 ? 1e-12 * hmin * hmin : 1e-12 * hmin;
-  std::vector<Vec3> poly, scratch;
-  for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    if (walls && walls->skips(f)) continue;
-    const auto& fc = s.faces[f];
-    const Vec3& n = topo.face_normal[f];
-    const int nid = DIM == 1 ? 1 : DIM;
-    Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;
-    for (int k = 1; k < nid; ++k)
-      for (std::size_t d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
-        hi[d] = std::max(hi[d], s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>(k)])][d]);
-      }
-    const Vec3& a = s.vertices[static_cast<std::size_t>(fc[0])];
-    // A cell box meets the face's plane iff |n.(x_c - a)| <= sum_d |n_d| dx_d / 2.
-    double r = 0;
-    for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) r += std::abs(n[d]) * half[d];
-    r += 1e-12 * hmin;
-    for_each_in_slab(centres, lo, hi, half, n, dot(n, a), r, [&](int I, int J, int K) {
-      ++tests;
-      const Vec3 blo = nodes.point(I, J, K), bhi = nodes.point(I + 1, DIM > 1 ? J + 1 : J, DIM > 2 ? K + 1 : K);
-      Vec3 c{0, 0, 0};
-      double measure = 0;
-      std::array<double, 3> bary{1, 0, 0};
-      if constexpr (DIM == 1) {
-        if (a[0] < blo[0] - tol[0] || a[0] > bhi[0] + tol[0]) return;
-        poly.assign(1, a);
-        c = a;
-        measure = 1;
-      } else if constexpr (DIM == 2) {
-        const Vec3& b = s.vertices[static_cast<std::size_t>(fc[1])];
-        const Vec3 delta = b - a;
-        double t0 = 0, t1 = 1;
-        for (std::size_t d = 0; d < 2; ++d) {
-          // Along a grid line up to round-off (a moving wall that arrives on it): in both cells, owns_piece()
-          // decides; otherwise the piece would fall between them and the cut cell would be lost.
-          if (std::abs(delta[d]) <= tol[d]) {
-            if (std::max(a[d], b[d]) < blo[d] - tol[d] || std::min(a[d], b[d]) > bhi[d] + tol[d]) return;
-            continue;
-          }
-          double ta = (blo[d] - a[d]) / delta[d], tb = (bhi[d] - a[d]) / delta[d];
-          if (ta > tb) std::swap(ta, tb);
-          t0 = std::max(t0, ta);
-          t1 = std::min(t1, tb);
-        }
-        if (!(t1 > t0)) return;
-        measure = (t1 - t0) * topo.face_measure[f];
-        poly = {a + t0 * delta, a + t1 * delta};
-        c = 0.5 * (poly[0] + poly[1]);
-        const double tm = 0.5 * (t0 + t1);
-        bary = {1 - tm, tm, 0};
-      } else {
-        poly = {a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]};
-        for (std::size_t d = 0; d < 3 && poly.size() >= 3; ++d) {
-          detail::clip_against(poly, scratch, d, blo[d], -1.0, tol[d]);
-          if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0, tol[d]);
-        }
-        if (poly.size() < 3) return;
-        // area-weighted centroid of the fan triangles
-        Vec3 acc{0, 0, 0};
-        for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-          const double ak = 0.5 * dot(cross(poly[k] - poly[0], poly[k + 1] - poly[0]), n);
-          measure += ak;
-          acc = acc + (ak / 3.0) * (poly[0] + poly[k] + poly[k + 1]);
-        }
-        if (!(measure > 0)) return;
-        c = (1.0 / measure) * acc;
-        bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])],
-                                   s.vertices[static_cast<std::size_t>(fc[2])]);
-      }
-      if (measure <= min_measure) return;
-      if (!detail::owns_piece(poly, blo, bhi, n, DIM, tol)) return;
-      InterfaceSegment seg;
-      seg.cell = centres.index(I, J, K);
-      seg.ijk = {I - Grid<DIM>::offset(0), J - Grid<DIM>::offset(1), K - Grid<DIM>::offset(2)};
-      seg.face = static_cast<int>(f);
-      seg.center = c;
-      seg.normal = n;
-      seg.area = measure;
-      seg.velocity = face_velocity(s, static_cast<int>(f), bary);
-      seg.first_point = static_cast<int>(points.size());
-      seg.point_count = static_cast<int>(poly.size());
-      points.insert(points.end(), poly.begin(), poly.end());
+  // Threads take contiguous ranges of faces and their pieces are joined in thread order: the same list, in the
+  // same order, as one thread gives. The first range goes straight into the output, the others into buffers
+  // that keep their capacity from cycle to cycle.
+  const std::size_t nfaces = s.faces.size();
+  const int nthreads = nfaces < 256 ? 1 : omp_get_max_threads();
+  std::vector<std::vector<InterfaceSegment>*> seg_t(static_cast<std::size_t>(nthreads));
+  std::vector<std::vector<Vec3>*> pts_t(static_cast<std::size_t>(nthreads));
+  std::vector<std::size_t> tests_t(static_cast<std::size_t>(nthreads), 0);
+#pragma omp parallel num_threads(nthreads)
+  {
+    static thread_local std::vector<InterfaceSegment> own_segments;
+    static thread_local std::vector<Vec3> own_points;
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num()), nt = static_cast<std::size_t>(nthreads);
+    std::vector<InterfaceSegment>& segs = t == 0 ? segments : own_segments;
+    std::vector<Vec3>& pts = t == 0 ? points : own_points;
+    segs.clear();
+    pts.clear();
+    seg_t[t] = &segs;
+    pts_t[t] = &pts;
+    std::vector<Vec3> poly, scratch;
+    for (std::size_t f = nfaces * t / nt; f < nfaces * (t + 1) / nt; ++f)
+      clip_face(s, topo, f, centres, nodes, half, tol, hmin, min_measure, walls, poly, scratch, segs, pts, tests_t[t]);
+  }
+  for (std::size_t t = 0; t < seg_t.size(); ++t) {
+    tests += tests_t[t];
+    if (t == 0) continue;
+    const int offset = static_cast<int>(points.size());
+    for (InterfaceSegment seg : *seg_t[t]) {
+      seg.first_point += offset;
       segments.push_back(seg);
-    });
+    }
+    points.insert(points.end(), pts_t[t]->begin(), pts_t[t]->end());
   }
   // Sorted by owning cell (then face): the pieces of one cell are contiguous.
   std::stable_sort(segments.begin(), segments.end(),

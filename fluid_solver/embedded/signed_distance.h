@@ -162,7 +162,10 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
   // Sign and closest data in the band.
   double hmin = L.dx[0];
   for (std::size_t d = 1; d < static_cast<std::size_t>(DIM); ++d) hmin = std::min(hmin, L.dx[d]);
-  for (auto& b : ls.band) {
+  const long nband = static_cast<long>(ls.band.size());
+#pragma omp parallel for schedule(static) if (nband > 4096)
+  for (long k = 0; k < nband; ++k) {  // each point on its own: threads write disjoint entries
+    BandPoint& b = ls.band[static_cast<std::size_t>(k)];
     const auto ijk = L.ijk(b.index);
     const Vec3 x = L.point(ijk[0], ijk[1], ijk[2]);
     const ClosestPoint cp = closest_on_face(s, b.face, x);

@@ -2,6 +2,7 @@
 // segments, narrow-band signed distance, cell categories, image points, side images of thin bodies and the
 // locality of the work.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -666,6 +667,41 @@ TEST(EmbeddedGeometry, FacesOnTheDomainWallLeaveTheCornerGhostsToTheEndFaces) {
   double plength = 0;
   for (const auto& seg : ep.segments) plength += seg.area;
   EXPECT_NEAR(plength, 2.6, 1e-12);  // all four faces
+}
+
+}  // namespace
+}  // namespace cosim::fluid::embedded
+
+namespace cosim::fluid::embedded {
+namespace {
+
+// The geometry's parallel parts (the clip over faces, the band's signs) give the same geometry on two threads as
+// on one: the same pieces in the same order, the same distances, categories and image points. (The test suite
+// runs on one thread, so this is where the threaded paths are checked.)
+TEST(EmbeddedGeometry, TwoThreadsBuildTheSameGeometryAsOne) {
+  const int n = 48;
+  const Grid<3> g({n, n, n}, {0, 0, 0}, {1, 1, 1});
+  const Surface target = make_subdivided_box(3, {0.45, 0.25, 0.25}, {0.55, 0.75, 0.75}, {4, 16, 16});
+  ASSERT_GT(target.faces.size(), 256u);  // above the clip's one-thread size
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const EmbeddedGeometry<3> one = build_geometry<3>(g, target, GeometryOptions{});
+  omp_set_num_threads(2);
+  const EmbeddedGeometry<3> two = build_geometry<3>(g, target, GeometryOptions{});
+  omp_set_num_threads(saved);
+  ASSERT_EQ(one.segments.size(), two.segments.size());
+  ASSERT_GT(one.segments.size(), 1000u);
+  for (std::size_t i = 0; i < one.segments.size(); ++i) {
+    const InterfaceSegment &a = one.segments[i], &b = two.segments[i];
+    ASSERT_TRUE(a.cell == b.cell && a.face == b.face && a.area == b.area && a.center == b.center &&
+                a.first_point == b.first_point && a.point_count == b.point_count)
+        << "segment " << i;
+  }
+  EXPECT_EQ(one.segment_points, two.segment_points);
+  EXPECT_EQ(one.centres.phi, two.centres.phi);
+  EXPECT_EQ(one.nodes.phi, two.nodes.phi);
+  EXPECT_EQ(one.category, two.category);
+  EXPECT_EQ(one.image_points.size(), two.image_points.size());
 }
 
 }  // namespace
