@@ -701,7 +701,11 @@ TEST(EmbeddedGeometry, TwoThreadsBuildTheSameGeometryAsOne) {
   EXPECT_EQ(one.centres.phi, two.centres.phi);
   EXPECT_EQ(one.nodes.phi, two.nodes.phi);
   EXPECT_EQ(one.category, two.category);
-  EXPECT_EQ(one.image_points.size(), two.image_points.size());
+  ASSERT_EQ(one.image_points.size(), two.image_points.size());
+  for (std::size_t i = 0; i < one.image_points.size(); ++i)
+    ASSERT_TRUE(one.image_points[i].cell == two.image_points[i].cell &&
+                one.image_points[i].x_boundary == two.image_points[i].x_boundary)
+        << "image point " << i;
 }
 
 }  // namespace
