@@ -29,6 +29,7 @@
 #include "fluid_solver/flux/aufs_row.h"
 #include "fluid_solver/flux/cross_row.h"
 #include "fluid_solver/physics/exchange_row.h"
+#include "fluid_solver/physics/relax_row.h"
 #include "fluid_solver/physics/relaxation.h"
 
 namespace cosim::fluid {
@@ -621,69 +622,32 @@ class Solver final : public FluidSimulation {
   }
   static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
 
-  // Instantaneous relaxations of a row of cells, on the arrays directly so that the loop vectorises
-  // (same operators as relax_velocity / relax_pressure_kernel, docs/methods.md §2.5). With a granular temperature
-  // (GRAN) the dispersed phase's granular energy is kept: what the relaxations exchange is its material's.
+  // The row's conservative arrays for the two-phase row kernels (physics/two_phase_row.h).
+  TwoPhaseRow<DIM> two_phase_row(std::size_t base) {
+    TwoPhaseRow<DIM> v;
+    v.alpha = U_.var(Lay::alpha) + base;
+    for (int k = 0; k < 2; ++k) {
+      v.m[k] = U_.var(Lay::mass(k)) + base;
+      for (int d = 0; d < DIM; ++d) v.mom[k][d] = U_.var(Lay::mom(k, d)) + base;
+      v.E[k] = U_.var(Lay::energy(k)) + base;
+    }
+    if (gran_) v.heat = U_.var(Lay::heat) + base;
+    return v;
+  }
+
+  // The instantaneous relaxations of a row of cells (physics/relax_row.h).
   void relax_cells(std::size_t base, int len, bool vrelax, bool prelax) {
     if (gran_) relax_cells_as<true>(base, len, vrelax, prelax);
     else relax_cells_as<false>(base, len, vrelax, prelax);
   }
   template <bool GRAN>
   void relax_cells_as(std::size_t base, int len, bool vrelax, bool prelax) {
-    if (vrelax && prelax) relax_row<true, true, GRAN>(base, len);
-    else if (vrelax) relax_row<true, false, GRAN>(base, len);
-    else if (prelax) relax_row<false, true, GRAN>(base, len);
-    else relax_row<false, false, GRAN>(base, len);  // clamps alpha
-  }
-  template <bool VRELAX, bool PRELAX, bool GRAN>
-  void relax_row(std::size_t base, int len) {
+    const TwoPhaseRow<DIM> v = two_phase_row(base);
     const double amin = scene_.exchange.alpha_min;
-    double* al = U_.var(Lay::alpha) + base;
-    double* m0 = U_.var(Lay::mass(0)) + base;
-    double* m1 = U_.var(Lay::mass(1)) + base;
-    double* E0 = U_.var(Lay::energy(0)) + base;
-    double* E1 = U_.var(Lay::energy(1)) + base;
-    double* q0[DIM];
-    double* q1[DIM];
-    for (int d = 0; d < DIM; ++d) {
-      q0[d] = U_.var(Lay::mom(0, d)) + base;
-      q1[d] = U_.var(Lay::mom(1, d)) + base;
-    }
-    double* H = nullptr;
-    if constexpr (GRAN) H = U_.var(Lay::heat) + base;
-    const eos::StiffenedGas e0 = eos_[0], e1 = eos_[1];
-#pragma GCC ivdep
-    for (int i = 0; i < len; ++i) {
-      double a = std::min(std::max(al[i], amin), 1.0 - amin);
-      const double M0 = m0[i], M1 = m1[i];
-      double en0 = E0[i], en1 = E1[i], k0 = 0.0, k1 = 0.0;
-      double G = 0.0;  // the granular energy, E - kinetic - material
-      if constexpr (GRAN) {
-        double q = 0;
-        for (int d = 0; d < DIM; ++d) q += q1[d][i] * q1[d][i];
-        G = en1 - 0.5 * q / M1 - H[i];
-      }
-      for (int d = 0; d < DIM; ++d) {
-        double p0 = q0[d][i], p1 = q1[d][i];
-        if constexpr (VRELAX) {  // mass-weighted mean velocity; kinetic energy lost becomes internal energy
-          const double ueq = (p0 + p1) / (M0 + M1);
-          en0 += M0 * ueq * (ueq - p0 / M0);
-          en1 += M1 * ueq * (ueq - p1 / M1);
-          p0 = M0 * ueq;
-          p1 = M1 * ueq;
-          q0[d][i] = p0;
-          q1[d][i] = p1;
-        }
-        k0 += p0 * p0;
-        k1 += p1 * p1;
-      }
-      if constexpr (PRELAX)  // the granular energy counts with the kinetic: the kernel sees the material's
-        relax_pressure_kernel(a, M0, M1, 0.5 * k0 / (M0 * M0), 0.5 * k1 / (M1 * M1) + G / M1, en0, en1, e0, e1);
-      if constexpr (GRAN) H[i] = en1 - 0.5 * k1 / M1 - G;
-      al[i] = a;
-      E0[i] = en0;
-      E1[i] = en1;
-    }
+    if (vrelax && prelax) relax_row<DIM, true, true, GRAN>(len, v, eos_[0], eos_[1], amin);
+    else if (vrelax) relax_row<DIM, true, false, GRAN>(len, v, eos_[0], eos_[1], amin);
+    else if (prelax) relax_row<DIM, false, true, GRAN>(len, v, eos_[0], eos_[1], amin);
+    else relax_row<DIM, false, false, GRAN>(len, v, eos_[0], eos_[1], amin);  // clamps alpha
   }
 
   // Drag, heat exchange and, with a granular temperature, the loss of the particles' random motion to drag (its
@@ -737,15 +701,7 @@ class Solver final : public FluidSimulation {
     double dummy = 0;
     for_each_row(
         [&](std::size_t base, int len, double&) {
-          ExchangeRowViews<DIM> v;
-          v.alpha = U_.var(Lay::alpha) + base;
-          for (int k = 0; k < 2; ++k) {
-            v.m[k] = U_.var(Lay::mass(k)) + base;
-            for (int d = 0; d < DIM; ++d) v.mom[k][d] = U_.var(Lay::mom(k, d)) + base;
-            v.E[k] = U_.var(Lay::energy(k)) + base;
-          }
-          if (GRAN) v.heat = U_.var(Lay::heat) + base;
-          exchange_row<DIM, DRAG, HEAT, GRAN>(len, v, eos_, scene_.exchange, dt,
+          exchange_row<DIM, DRAG, HEAT, GRAN>(len, two_phase_row(base), eos_, scene_.exchange, dt,
                                               scratch_[static_cast<std::size_t>(omp_get_thread_num())].exchange);
           if (scene_.exchange.pressure_relaxation) relax_cells(base, len, false, true);
         },

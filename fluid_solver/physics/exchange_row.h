@@ -11,19 +11,9 @@
 
 #include "common/eos/stiffened_gas.h"
 #include "fluid_solver/core/scene.h"
+#include "fluid_solver/physics/two_phase_row.h"
 
 namespace cosim::fluid {
-
-// A row's conservative arrays: alpha0, per phase mass, momentum and total energy, and (GRAN) the particles'
-// material energy.
-template <int DIM>
-struct ExchangeRowViews {
-  double* alpha = nullptr;
-  double* m[2] = {nullptr, nullptr};
-  double* mom[2][DIM] = {};
-  double* E[2] = {nullptr, nullptr};
-  double* heat = nullptr;
-};
 
 // Scratch arrays a row needs: kExchangeScratch of n doubles each.
 inline constexpr int kExchangeScratch = 8;
@@ -32,7 +22,7 @@ inline constexpr int kExchangeScratch = 8;
 // kept apart from drag and heat exchange, and decaying by drag (at twice the slip's rate of the particles alone)
 // and collisions.
 template <int DIM, bool DRAG, bool HEAT, bool GRAN>
-void exchange_row(int n, const ExchangeRowViews<DIM>& v, const eos::StiffenedGas (&e)[2], const Exchange& ex, double dt,
+void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)[2], const Exchange& ex, double dt,
                   double* scratch) {
   double* const al = v.alpha;
   double* const m0 = v.m[0];

@@ -64,8 +64,8 @@ Row random_row(int n, const eos::StiffenedGas (&e)[2], unsigned seed) {
 }
 
 template <int DIM>
-ExchangeRowViews<DIM> views(Row& r) {
-  ExchangeRowViews<DIM> v;
+TwoPhaseRow<DIM> views(Row& r) {
+  TwoPhaseRow<DIM> v;
   v.alpha = r.alpha.data();
   for (int k = 0; k < 2; ++k) {
     v.m[k] = r.m[k].data();
