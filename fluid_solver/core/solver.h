@@ -29,6 +29,7 @@
 #include "fluid_solver/flux/aufs_row.h"
 #include "fluid_solver/flux/cross_row.h"
 #include "fluid_solver/physics/exchange_row.h"
+#include "fluid_solver/physics/particle_stress_row.h"
 #include "fluid_solver/physics/relax_row.h"
 #include "fluid_solver/physics/relaxation.h"
 
@@ -1154,71 +1155,34 @@ class Solver final : public FluidSimulation {
       (void)len, (void)left_edges, (void)left_off, (void)right_edges, (void)right_off, (void)buf, (void)flen;
     }
   }
-  // GRAN: the granular pressure joins the stress, the granular gas's sound its wave speed, and the material
-  // energy gets the same dissipation (docs/methods.md §2.9).
+  // The row's edge views for physics/particle_stress_row.h.
   template <int D, int B, bool GRAN>
   void particle_stress_row(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                            double* buf, std::size_t flen) const {
-    const ParticleStress& ps = scene_.exchange.particle_stress;
-    const eos::StiffenedGas& e = eos_[NP - 1];
-    const double ig1 = 1.0 / (e.gamma - 1.0), gpinf = e.gamma * e.pinf, q = e.q;
     const std::size_t elen = edge_row_len();
     const auto lv = [&](int v) { return left_edges + (Lay::kPrim + v) * elen + left_off; };  // hi edge, left cell
     const auto rv = [&](int v) { return right_edges + v * elen + right_off; };               // lo edge, right cell
-    const double *al = lv(Lay::palpha), *ar = rv(Lay::palpha);
-    const double *rL = lv(Lay::rho(1)), *rR = rv(Lay::rho(1)), *pL = lv(Lay::pres(1)), *pR = rv(Lay::pres(1));
-    const double* uL[DIM];
-    const double* uR[DIM];
-    double* fmom[DIM];
+    DispersedFaceRow<DIM> r;
+    r.alpha_left = lv(Lay::palpha);
+    r.alpha_right = rv(Lay::palpha);
+    r.rho_left = lv(Lay::rho(1));
+    r.rho_right = rv(Lay::rho(1));
+    r.p_left = lv(Lay::pres(1));
+    r.p_right = rv(Lay::pres(1));
     for (int d = 0; d < DIM; ++d) {
-      uL[d] = lv(Lay::vel(1, d));
-      uR[d] = rv(Lay::vel(1, d));
-      fmom[d] = buf + fvar_flux(1, 1 + d) * flen;
+      r.u_left[d] = lv(Lay::vel(1, d));
+      r.u_right[d] = rv(Lay::vel(1, d));
+      r.flux_mom[d] = buf + fvar_flux(1, 1 + d) * flen;
     }
-    double* fm = buf + fvar_flux(1, 0) * flen;
-    double* fe = buf + fvar_flux(1, 1 + DIM) * flen;
-    const GranularGas& gr = scene_.exchange.granular;
-    const double *gL = nullptr, *gR = nullptr;
-    double* fh = nullptr;
+    r.flux_mass = buf + fvar_flux(1, 0) * flen;
+    r.flux_energy = buf + fvar_flux(1, 1 + DIM) * flen;
     if constexpr (GRAN) {
-      gL = lv(Lay::pgran);
-      gR = rv(Lay::pgran);
-      fh = buf + fvar_heat * flen;
+      r.k_left = lv(Lay::pgran);
+      r.k_right = rv(Lay::pgran);
+      r.flux_heat = buf + fvar_heat * flen;
     }
-#pragma GCC ivdep
-    for (int f = 0; f < len; ++f) {
-      const double aL = 1.0 - al[f], aR = 1.0 - ar[f];
-      double piL, dL, piR, dR;
-      ps.eval<B>(aL, piL, dL);
-      ps.eval<B>(aR, piR, dR);
-      double cf = std::sqrt(std::max(dL / rL[f], dR / rR[f]));
-      double gEL = 0.0, gER = 0.0;  // granular energy per volume of the two edges
-      if constexpr (GRAN) {
-        double pgL, cgL, pgR, cgR;
-        gr.pressure_and_speed(aL, rL[f], gL[f], pgL, cgL);
-        gr.pressure_and_speed(aR, rR[f], gR[f], pgR, cgR);
-        piL += pgL;
-        piR += pgR;
-        cf = std::max(cf, std::max(cgL, cgR));
-        gEL = aL * rL[f] * gL[f];
-        gER = aR * rR[f] * gR[f];
-      } else {
-        (void)gr, (void)gL, (void)gR, (void)fh;
-      }
-      const double mL = aL * rL[f], mR = aR * rR[f];
-      double kL = 0, kR = 0;
-      for (int d = 0; d < DIM; ++d) {
-        kL += uL[d][f] * uL[d][f];
-        kR += uR[d][f] * uR[d][f];
-        fmom[d][f] -= 0.5 * cf * (mR * uR[d][f] - mL * uL[d][f]);
-      }
-      fmom[D][f] += 0.5 * (piL + piR);
-      fm[f] -= 0.5 * cf * (mR - mL);
-      const double hL = aL * ((pL[f] + gpinf) * ig1 + rL[f] * q), hR = aR * ((pR[f] + gpinf) * ig1 + rR[f] * q);
-      const double EL = hL + aL * 0.5 * rL[f] * kL + gEL, ER = hR + aR * 0.5 * rR[f] * kR + gER;
-      fe[f] += 0.5 * (piL * uL[D][f] + piR * uR[D][f]) - 0.5 * cf * (ER - EL);
-      if constexpr (GRAN) fh[f] -= 0.5 * cf * (hR - hL);
-    }
+    add_particle_stress_row<DIM, D, B, GRAN>(len, r, scene_.exchange.particle_stress, scene_.exchange.granular,
+                                             eos_[NP - 1]);
   }
 
   // Faces of a row where phase k is a trace on both sides get the trace flux (flux/trace_flux.h) in place of
