@@ -1,5 +1,6 @@
 // Ghost cells of the primitive arrays from the boundary conditions of each side. The directions are
-// filled one after the other, each over the ghost layers of the directions filled before it, so the
+// filled one after the other (x row by row, fill_x_row; then y and z, fill), each over the ghost layers of the
+// directions filled before it, so the
 // edge and corner ghosts hold valid states too: the flux stencils never read them, but the embedded
 // boundary's image-point and sampling stencils do where a body crosses the domain boundary (they read
 // zeros there before: a zero pressure in 3D image points).
@@ -39,9 +40,10 @@ class BoundaryFiller {
       }
   }
 
-  // x_done: the x ghosts are filled already (fill_x_row on every interior row).
-  void fill(FieldArray& W, bool x_done = false) const {
-    for (int d = x_done ? 1 : 0; d < DIM; ++d)
+  // The y and z ghosts, over the x ghost layers too: call it after fill_x_row on every interior row (the pass that
+  // computes the rows fills their x ghosts while they are in cache).
+  void fill(FieldArray& W) const {
+    for (int d = 1; d < DIM; ++d)
       for (int side = 0; side < 2; ++side) fill_side(W, d, side);
   }
   // The x ghosts of the interior row starting at cell `base`, every variable: fill's first direction one row at a

@@ -145,9 +145,7 @@ class Solver final : public FluidSimulation {
               if constexpr (NP == 2) {
                 const double ak = k == 0 ? w[Lay::palpha][c] : 1.0 - w[Lay::palpha][c];
                 if (DISPERSED && k == 1) {
-                  double pi, dpi;
-                  ps.eval<B>(ak, pi, dpi);
-                  cs = std::sqrt(dpi / rho);
+                  cs = ps.wave_speed_as<B>(ak, rho);
                   if constexpr (GRAN) {
                     double pg, cg;
                     gr.pressure_and_speed(ak, rho, w[Lay::pgran][c], pg, cg);
@@ -421,7 +419,7 @@ class Solver final : public FluidSimulation {
   void stage(double dt, double a, double b) {
     compute_primitives(U_);
     primitives_valid_ = false;
-    bc_.fill(W_, /*x_done=*/true);
+    bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
     if (emb_.active) {
       fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
       fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);

@@ -22,19 +22,8 @@ inline constexpr int kExchangeScratch = 8;
 // kept apart from drag and heat exchange, and decaying by drag (at twice the slip's rate of the particles alone)
 // and collisions.
 template <int DIM, bool DRAG, bool HEAT, bool GRAN>
-void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)[2], const Exchange& ex, double dt,
+void exchange_row(int n, const TwoPhaseRow<DIM> r, const eos::StiffenedGas (&e)[2], const Exchange& ex, double dt,
                   double* scratch) {
-  double* const al = v.alpha;
-  double* const m0 = v.m[0];
-  double* const m1 = v.m[1];
-  double* const E0 = v.E[0];
-  double* const E1 = v.E[1];
-  double* const H = v.heat;
-  double *q0[DIM], *q1[DIM];
-  for (int d = 0; d < DIM; ++d) {
-    q0[d] = v.mom[0][d];
-    q1[d] = v.mom[1][d];
-  }
   double* const decay = scratch;        // the slip's decay exponent, then its exp
   double* const gdecay = scratch + n;   // the granular energy's drag decay exponent, then its exp
   double* const G_s = scratch + 2 * n;  // granular energy per volume
@@ -49,19 +38,19 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
   // 1. Granular energy apart; the drag coefficient and the exponents of the slip's and the granular decay.
 #pragma GCC ivdep
   for (int i = 0; i < n; ++i) {
-    const double a0 = al[i], mg = m0[i], mp = m1[i];
+    const double a0 = r.alpha[i], mg = r.m[0][i], mp = r.m[1][i];
     double G = 0.0;
     if constexpr (GRAN) {
       double q = 0;
-      for (int k = 0; k < DIM; ++k) q += q1[k][i] * q1[k][i];
-      G = E1[i] - 0.5 * q / mp - H[i];
+      for (int k = 0; k < DIM; ++k) q += r.mom[1][k][i] * r.mom[1][k][i];
+      G = r.E[1][i] - 0.5 * q / mp - r.heat[i];
       G_s[i] = G;
     }
     double beta = 0.0;
     if constexpr (DRAG) {
       double slip2 = 0;
       for (int k = 0; k < DIM; ++k) {
-        const double du = q0[k][i] / mg - q1[k][i] / mp;
+        const double du = r.mom[0][k][i] / mg - r.mom[1][k][i] / mp;
         slip2 += du * du;
       }
       const double alpha_g = a0, alpha_p = 1.0 - a0;
@@ -94,13 +83,13 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
   //    Then the temperature difference and the heat exchange coefficient (apply_heat_transfer).
 #pragma GCC ivdep
   for (int i = 0; i < n; ++i) {
-    const double a0 = al[i], mg = m0[i], mp = m1[i];
-    double e0 = E0[i], e1 = E1[i];
+    const double a0 = r.alpha[i], mg = r.m[0][i], mp = r.m[1][i];
+    double e0 = r.E[0][i], e1 = r.E[1][i];
     if constexpr (GRAN) e1 -= G_s[i];
     double u0[DIM], u1[DIM];
     for (int k = 0; k < DIM; ++k) {
-      u0[k] = q0[k][i];
-      u1[k] = q1[k][i];
+      u0[k] = r.mom[0][k][i];
+      u1[k] = r.mom[1][k][i];
     }
     if constexpr (DRAG) {
       const double M = mg + mp, dec = decay[i];
@@ -121,8 +110,8 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
       for (int k = 0; k < DIM; ++k) {
         u0[k] = slip ? n0[k] : u0[k];
         u1[k] = slip ? n1[k] : u1[k];
-        q0[k][i] = u0[k];
-        q1[k][i] = u1[k];
+        r.mom[0][k][i] = u0[k];
+        r.mom[1][k][i] = u1[k];
       }
       e1 = slip ? e1 + dke : e1;
       e0 = slip ? e0 - dke : e0;
@@ -145,8 +134,8 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
       inv_s[i] = inv;
       hdecay[i] = -dt * K * inv;
     }
-    E0[i] = e0;
-    E1[i] = e1;
+    r.E[0][i] = e0;
+    r.E[1][i] = e1;
   }
   // 4. exp, scalar.
   if constexpr (HEAT)
@@ -158,7 +147,7 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
     const double dsp = gr.diameter * std::sqrt(M_PI);
 #pragma GCC ivdep
     for (int i = 0; i < n; ++i) {
-      double e0 = E0[i], e1 = E1[i];
+      double e0 = r.E[0][i], e1 = r.E[1][i];
       if constexpr (HEAT) {
         const double dT = dT_s[i];
         const double Q = dT * hdecay[i] / inv_s[i];
@@ -167,18 +156,18 @@ void exchange_row(int n, const TwoPhaseRow<DIM>& v, const eos::StiffenedGas (&e)
       }
       if constexpr (GRAN) {
         e1 += G_s[i];
-        const double a = 1.0 - al[i], mp = m1[i];
+        const double a = 1.0 - r.alpha[i], mp = r.m[1][i];
         const double k = G_s[i] / mp * gdecay[i];
         const double c = coll * gr.g0(a) * a / dsp;
         const double s = std::sqrt(std::max(k, 0.0) * (2.0 / 3.0));
         const double q = 1.0 + 0.5 * c * s * dt;
         const double kc = a < gr.alpha_min ? 0.0 : (k > 0.0 ? k / (q * q) : k);
         double kin = 0;
-        for (int j = 0; j < DIM; ++j) kin += q1[j][i] * q1[j][i];
-        H[i] = e1 - 0.5 * kin / mp - mp * kc;
+        for (int j = 0; j < DIM; ++j) kin += r.mom[1][j][i] * r.mom[1][j][i];
+        r.heat[i] = e1 - 0.5 * kin / mp - mp * kc;
       }
-      E0[i] = e0;
-      E1[i] = e1;
+      r.E[0][i] = e0;
+      r.E[1][i] = e1;
     }
   }
 }

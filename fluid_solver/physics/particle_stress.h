@@ -44,11 +44,16 @@ struct ParticleStress {
     eval_any(a, pi, dpi);
     return pi;
   }
-  // The speed of compaction waves in the particle phase of material density rho_p.
-  double wave_speed(double a, double rho_p) const {
+  // The speed of compaction waves in the particle phase of material density rho_p (B as in eval; wave_speed
+  // chooses it as eval_any does).
+  template <int B>
+  [[gnu::always_inline]] inline double wave_speed_as(double a, double rho_p) const {
     double pi, dpi;
-    eval_any(a, pi, dpi);
+    eval<B>(a, pi, dpi);
     return std::sqrt(dpi / rho_p);
+  }
+  double wave_speed(double a, double rho_p) const {
+    return beta == 3.0 ? wave_speed_as<3>(a, rho_p) : wave_speed_as<0>(a, rho_p);
   }
 };
 

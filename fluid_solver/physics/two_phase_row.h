@@ -1,5 +1,6 @@
 // A row of cells of a two-phase conservative state, as views into the solver's arrays: what the row kernels of
-// the relaxations and exchanges (relax_row.h, exchange_row.h) work on.
+// the relaxations and exchanges (relax_row.h, exchange_row.h) work on. The kernels take it by value: a local copy,
+// whose pointers the compiler sees loop-invariant, so that their loops vectorise.
 #pragma once
 
 namespace cosim::fluid {
