@@ -759,7 +759,7 @@ class Solver final : public FluidSimulation {
     double* edges[2] = {nullptr, nullptr};
     double* mini = nullptr;
     double* face1 = nullptr;
-    double* exchange = nullptr;                   // exchange_row's scratch (kExchangeScratch rows of cells)
+    double* exchange = nullptr;  // kExchangeScratch rows of cells: exchange_row's scratch, max_wave_rate's rates
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
