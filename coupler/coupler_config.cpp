@@ -33,6 +33,8 @@ CouplerConfig read_coupler_config(const std::string& file, const std::vector<std
   c.step_timeout = n.get<double>("step_timeout", 0.0, non_negative());
   c.max_message_mb = n.get<double>("max_message_mb", 256.0, in_range(0.01, 65536.0));
   c.pressure_predictor = n.get<std::string>("predictor", "linear", one_of({"linear", "none"})) == "linear";
+  auto ck = n.optional_child("checkpoint");
+  c.checkpoint = checkpoint::read_checkpoint_policy(ck ? &*ck : nullptr);
   n.finish();
   return c;
 }

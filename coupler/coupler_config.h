@@ -8,11 +8,13 @@
 //     connect_timeout: 30.0      # [s] to wait for both solvers' Hello
 //     scheme: pipelined          # pipelined | sequential: order of the cycle (docs/protocol.md, "Schemes")
 //     predictor: linear          # linear | none: fluid pressures extrapolated to the solid's time (cycle.h)
+//     checkpoint: {interval: 1.0e-3, cycles: 500, keep: 2}   # whole-run checkpoint sets (checkpoint_sets.h)
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/coupling/types.h"
 
 namespace cosim::coupler {
@@ -30,6 +32,7 @@ struct CouplerConfig {
   double step_timeout = 0.0;  // 0: automatic (HubOptions)
   double max_message_mb = 256.0;
   bool pressure_predictor = true;  // predictor: linear
+  checkpoint::CheckpointPolicy checkpoint;  // off unless coupling.checkpoint is given
 };
 
 // Throws config::ConfigError naming the file, line and key.

@@ -5,8 +5,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
 
 #include "common/app/run_driver.h"
+#include "common/app/version.h"
+#include "common/checkpoint/checkpoint_sets.h"
+#include "common/checkpoint/part_file.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/wire.h"
 #include "coupler/history.h"
@@ -38,10 +44,12 @@ double choose_dt(double proposal_min, double dt_max, double t, double t_next_out
 namespace {
 
 struct Loop {
-  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir)
-      : cfg(c), hub(h), history(dir), predictor(c.mode == coupling::Mode::Robin) {}
+  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir, const CheckpointContext& k,
+       const checkpoint::PartReader* resume)
+      : cfg(c), hub(h), ck(k), history(dir, resume), predictor(c.mode == coupling::Mode::Robin) {}
   const CouplerConfig& cfg;
   Hub& hub;
+  const CheckpointContext& ck;
   History history;
   RunSummary sum;
 
@@ -147,18 +155,92 @@ struct Loop {
     return std::min(proposals[0].dt_proposal().dt(), proposals[1].dt_proposal().dt());
   }
 
-  void run() {
-    hub.handshake();
-    double t = 0.0, dt = 0.0;
-    std::size_t next_out = 0;
+  // The state the loop starts from: cycle 0 at t = 0, or the cycle after a checkpoint set.
+  struct Start {
+    long cycle = 0;
+    double time = 0, proposal = 0;
     int out_index = 0;
+  };
+
+  Start restore(const checkpoint::PartReader& r) {
+    Start s;
+    s.cycle = r.integer("cycle") + 1;
+    s.time = r.scalar("time");
+    s.proposal = r.scalar("proposal");
+    s.out_index = static_cast<int>(r.integer("out_index"));
+    predictor.restore(r);
+    const std::vector<double> tot = r.doubles("run.totals", 4);
+    sum.total.wall = tot[0];
+    sum.total.solid = tot[1];
+    sum.total.fluid = tot[2];
+    sum.total.coupler = tot[3];
+    sum.cycles = s.cycle - 1;
+    sum.time = s.time;
+    if (s.time >= cfg.t_end * (1.0 - 1e-14))
+      throw coupling::CouplingError(fmt::format("--restart {}: the checkpoint is at t = {:.9g} s, at or after the "
+                                                "scene's end time coupling.time.end = {:g} s",
+                                                ck.restart.string(), s.time, cfg.t_end));
+    spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", s.cycle - 1, s.time, ck.restart.string());
+    return s;
+  }
+
+  // Asks both solvers for their parts of set n, writes its own, and completes the set with its manifest only when
+  // both have confirmed; older sets beyond cfg.checkpoint.keep are removed.
+  void write_checkpoint(long n, double t, double proposal, int out_index) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::absolute(checkpoint::set_path(ck.root, n));
+    std::error_code ec;
+    fs::remove_all(dir, ec);  // an incomplete set of a run that stopped here before
+    fs::create_directories(dir, ec);
+    if (ec)
+      throw coupling::CouplingError(fmt::format("{}: cannot create the checkpoint set: {}", dir.string(), ec.message()));
+    pb::Envelope req = envelope(hub, n, t);
+    req.mutable_checkpoint_request()->set_directory(dir.string());
+    send_both(req);
+    work([&] {
+      checkpoint::PartWriter w(dir / kCouplerPart, "coupler");
+      w.put_integer("cycle", n);
+      w.put_scalar("time", t);
+      w.put_scalar("proposal", proposal);
+      w.put_integer("out_index", out_index);
+      predictor.save(w);
+      history.save(w);
+      const double tot[4] = {sum.total.wall, sum.total.solid, sum.total.fluid, sum.total.coupler};
+      w.put("run.totals", std::span<const double>(tot, 4));
+      w.commit();
+    });
+    const auto done = hub.expect_both(pb::Envelope::kCheckpointWritten, n);
+    work([&] {
+      nlohmann::json m;
+      m["parts"] = {kCouplerPart, done[0].checkpoint_written().part(), done[1].checkpoint_written().part()};
+      std::ifstream in(ck.scene_file);
+      m["scene"] = std::string(std::istreambuf_iterator<char>(in), {});
+      m["overrides"] = ck.overrides;
+      m["scene_hash"] = ck.scene_hash;
+      m["version"] = app::version();
+      m["git_commit"] = app::git_commit();
+      checkpoint::write_manifest(dir, n, t, m);
+      checkpoint::prune(ck.root, cfg.checkpoint.keep);
+    });
+    spdlog::info("checkpoint of cycle {} at t = {:.9g} s: {}", n, t, dir.string());
+  }
+
+  void run(const checkpoint::PartReader* resume) {
+    hub.handshake();
+    const Start start = resume ? restore(*resume) : Start{};
+    double t = start.time, dt = 0.0;
+    std::size_t next_out = 0;
+    while (next_out < cfg.output_times.size() && t >= cfg.output_times[next_out] * (1.0 - 1e-14)) ++next_out;
+    int out_index = start.out_index;
+    if (resume) dt = choose_dt(start.proposal, cfg.dt_max, t, cfg.output_times[next_out]);
     const auto output = [&](long n) {
       pb::Envelope o = envelope(hub, n, t);
       o.mutable_output_request()->set_index(out_index++);
       send_both(o);
       work([&] { history.snapshot(n, t, last_faces, last_states); });
     };
-    for (long n = 0;; ++n) {
+    for (long n = start.cycle;; ++n) {
+      const double t_prev = t;
       const double proposal = cycle(n, t, dt);
       t += dt;
       sum.cycles = n;
@@ -179,6 +261,7 @@ struct Loop {
         spdlog::warn("{}", sum.message);
         break;
       }
+      if (cfg.checkpoint.enabled() && cfg.checkpoint.due(n, t_prev, t)) write_checkpoint(n, t, proposal, out_index);
       dt = choose_dt(proposal, cfg.dt_max, t, cfg.output_times[next_out]);
       if (!(dt > 0)) throw coupling::ProtocolError(fmt::format("time step collapsed to {:g} s at t = {:.9g} s", dt, t));
     }
@@ -190,12 +273,19 @@ struct Loop {
 
 }  // namespace
 
-RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir) {
+RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir,
+                       const CheckpointContext& ck) {
   RunSummary s;
   try {
-    Loop loop(cfg, hub, out_dir);
+    std::optional<checkpoint::PartReader> resume;
+    if (!ck.restart.empty()) {
+      try {
+        resume.emplace(ck.restart / kCouplerPart, "coupler");
+      } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+    }
+    Loop loop(cfg, hub, out_dir, ck, resume ? &*resume : nullptr);
     try {
-      loop.run();
+      loop.run(resume ? &*resume : nullptr);
       return loop.sum;
     } catch (...) {
       s = loop.sum;

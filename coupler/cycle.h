@@ -23,8 +23,20 @@ struct RunSummary {
   CycleTiming total;  // sums over the cycles
 };
 
+// Where the run's checkpoint sets go and what their manifests record; `restart`: the set this run resumes from.
+struct CheckpointContext {
+  std::filesystem::path root;     // the sets' directory (RUN/checkpoints)
+  std::filesystem::path restart;  // empty: a fresh start
+  std::string scene_file;         // the scene as read (its text goes into each manifest), with its overrides
+  std::vector<std::string> overrides;
+  std::string scene_hash;
+};
+inline constexpr const char* kCouplerPart = "coupler.h5";
+
 // Handshakes and runs to t_end; on any failure stops both solvers with a reason and returns a non-zero code.
-RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir);
+// With cfg.checkpoint enabled, writes a checkpoint set when one is due (docs/protocol.md, "Checkpoints").
+RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem::path& out_dir,
+                       const CheckpointContext& ck = {});
 
 // The next step: min of the proposals and dt_max, shortened so that no output time is stepped over and no
 // step is tiny (as common/app/run_driver.h).

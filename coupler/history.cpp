@@ -5,15 +5,17 @@
 #include <array>
 #include <chrono>
 
+#include "common/checkpoint/output_resume.h"
 #include "common/coupling/errors.h"
 
 namespace cosim::coupler {
 
 namespace {
 // The histories' lines reach the file whole or not at all (io::LineLog); a failure is the coupler's error.
-io::LineLog open(const std::filesystem::path& p, std::string_view header) {
+io::LineLog open(const std::filesystem::path& p, std::string_view header, const checkpoint::PartReader* resume,
+                const std::string& name) {
   try {
-    return io::LineLog(p, header);
+    return resume ? checkpoint::resume_log(*resume, name, p) : io::LineLog(p, header);
   } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
 }
 void append(io::LineLog& log, const std::string& line) {
@@ -23,13 +25,26 @@ void append(io::LineLog& log, const std::string& line) {
 }
 }  // namespace
 
-History::History(const std::filesystem::path& dir)
+History::History(const std::filesystem::path& dir, const checkpoint::PartReader* resume)
     : dir_(dir),
       hist_(open(dir / "interface_history.csv",
                  "cycle,time,dt,force_x,force_y,force_z,velocity_x,velocity_y,velocity_z,centre_x,centre_y,centre_z,"
-                 "pressure\n")),
-      timing_(open(dir / "timing.csv", "cycle,wall,solid,fluid,coupler,comm\n")),
-      interface_(dir, "interface") {}
+                 "pressure\n",
+                 resume, "interface_history")),
+      timing_(open(dir / "timing.csv", "cycle,wall,solid,fluid,coupler,comm\n", resume, "timing")),
+      interface_(dir, "interface") {
+  if (resume) {
+    try {
+      checkpoint::resume_series(*resume, "interface", interface_);
+    } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+  }
+}
+
+void History::save(checkpoint::PartWriter& w) const {
+  checkpoint::put_log(w, "interface_history", hist_);
+  checkpoint::put_log(w, "timing", timing_);
+  checkpoint::put_series(w, "interface", interface_);
+}
 
 void History::record(long cycle, double time, double dt, const coupling::Faces& faces,
                      const coupling::InterfaceStates& st) {

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/checkpoint/part_file.h"
 #include "common/io/line_log.h"
 
 #include "common/coupling/types.h"
@@ -31,7 +32,10 @@ struct CycleTiming {
 
 class History {
  public:
-  explicit History(const std::filesystem::path& dir);  // throws CouplingError naming the file
+  // Throws CouplingError naming the file. With `resume`, the tables and the interface series continue from the
+  // checkpoint (save()).
+  explicit History(const std::filesystem::path& dir, const checkpoint::PartReader* resume = nullptr);
+  void save(checkpoint::PartWriter& w) const;
   void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st);
   void record_timing(long cycle, const CycleTiming& timing);
   void progress(long cycle, double time, double t_end, double dt, bool force = false);

@@ -28,6 +28,7 @@ struct HubOptions {
   // longest answer it has given so far, at least kAutoStepFloor.
   double step_timeout = 0.0;
   double max_message_bytes = 256.0 * 1024 * 1024;  // a larger message drops its connection unread
+  long restarted_from = 0;  // cycle of the checkpoint set the run resumes from (both Hellos must say the same)
 };
 inline constexpr double kAutoStepFactor = 50.0, kAutoStepFloor = 120.0;
 

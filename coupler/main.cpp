@@ -1,4 +1,5 @@
 // coupler SCENE.yaml --endpoint EP [--token T] [--out DIR] [--set key=value ...] [--transcript FILE] [--quiet]
+//         [--checkpoints ROOT] [--restart SET]
 // Reads the scene's `coupling:` section, binds EP, handshakes the fluid and solid solvers and runs the coupled
 // cycle (coupler/cycle.h). Exit codes: 0 completed, 2 bad input, 4 I/O, 5 peer or protocol failure,
 // 130 interrupted.
@@ -16,6 +17,7 @@
 #include "common/app/run_driver.h"
 #include "common/app/run_options.h"
 #include "common/app/version.h"
+#include "common/checkpoint/part_file.h"
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/scene_hash.h"
@@ -63,6 +65,9 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
   app.add_option("--transcript", transcript, "write every message in protobuf text form to FILE");
   app.add_flag("--quiet", quiet, "only warnings and errors");
+  std::string restart, checkpoints;
+  app.add_option("--restart", restart, "resume from this checkpoint set (RUN/checkpoints/NNNNNNNNN)");
+  app.add_option("--checkpoints", checkpoints, "directory of the run's checkpoint sets (default OUT/checkpoints)");
   app.set_version_flag("--version", cosim::app::version_line("coupler"));
   app.footer(
       "Examples:\n"
@@ -117,12 +122,24 @@ int main(int argc, char** argv) {
   ho.connect_timeout = cfg.connect_timeout;
   ho.step_timeout = cfg.step_timeout;
   ho.max_message_bytes = cfg.max_message_mb * 1024 * 1024;
+  coupler::CheckpointContext ck{checkpoints.empty() ? std::filesystem::path(out) / "checkpoints"
+                                                    : std::filesystem::path(checkpoints),
+                                restart, scene, overrides, ho.scene_hash};
+  if (!restart.empty()) {
+    try {  // the cycle both solvers' Hellos must name
+      ho.restarted_from = checkpoint::PartReader(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler")
+                              .integer("cycle");
+    } catch (const std::exception& e) {
+      spdlog::error("--restart {}: {}", restart, e.what());
+      return 2;
+    }
+  }
   try {
     coupler::Transcript tr(transcript);
     coupler::Hub hub(ho, transcript.empty() ? nullptr : &tr);
     spdlog::info("listening on {} ({} coupling, {} cycle, timeout {:g} s)", hub.bound_endpoint(),
                  coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.timeout);
-    const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out);
+    const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out, ck);
     write_summary(out, s, cfg.scheme);
     if (s.code == 0) {
       const double n = std::max<long>(s.cycles, 1);

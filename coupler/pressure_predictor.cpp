@@ -33,4 +33,22 @@ void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
   }
 }
 
+void PressurePredictor::save(checkpoint::PartWriter& w) const {
+  w.put("predictor.pressure", prev_pressure_);
+  w.put("predictor.velocity", prev_velocity_);
+  const std::vector<std::uint8_t> wet(prev_wetted_.begin(), prev_wetted_.end());
+  w.put("predictor.wetted", wet);
+  w.put_scalar("predictor.time", prev_time_);
+  w.put_integer("predictor.have", have_prev_ ? 1 : 0);
+}
+
+void PressurePredictor::restore(const checkpoint::PartReader& r) {
+  prev_pressure_ = r.doubles("predictor.pressure");
+  prev_velocity_ = r.doubles("predictor.velocity");
+  const std::vector<std::uint8_t> wet = r.bytes("predictor.wetted");
+  prev_wetted_.assign(wet.begin(), wet.end());
+  prev_time_ = r.scalar("predictor.time");
+  have_prev_ = r.integer("predictor.have") != 0;
+}
+
 }  // namespace cosim::coupler

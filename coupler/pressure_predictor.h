@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "common/checkpoint/part_file.h"
 #include "common/coupling/types.h"
 
 namespace cosim::coupler {
@@ -19,6 +20,9 @@ class PressurePredictor {
   explicit PressurePredictor(bool with_velocity = false) : with_velocity_(with_velocity) {}
   // s: the samples taken at time t; dt: the step that follows. Keeps the raw samples for the next call.
   void apply(coupling::FluidSamples& s, double t, double dt);
+  // The samples it keeps, for checkpoints.
+  void save(checkpoint::PartWriter& w) const;
+  void restore(const checkpoint::PartReader& r);
 
  private:
   bool with_velocity_;

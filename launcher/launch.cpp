@@ -22,10 +22,12 @@
 #include <sstream>
 #include <thread>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
+#include "launcher/restart_check.h"
 #include "launcher/run_summary.h"
 #include "launcher/scene_check.h"
 
@@ -204,6 +206,43 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
 }
 }  // namespace
 
+namespace {
+// The checkpoint set a restart resumes from, checked against the scene given now: every key that shapes the
+// physics must be as it was when the set was written. Prints why and gives nothing when the run cannot resume.
+std::optional<fs::path> restart_set_for(const LaunchOptions& opt, const fs::path& root) {
+  checkpoint::SetInfo set;
+  try {
+    set = checkpoint::find_set(root, opt.restart_from >= 0 ? std::optional<long>(opt.restart_from) : std::nullopt);
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: --restart: " << e.what() << "\n";
+    return std::nullopt;
+  }
+  try {
+    const config::Node was =
+        config::load_string(set.manifest.value("scene", std::string()), (set.dir / "manifest.json").string(),
+                            set.manifest.value("overrides", std::vector<std::string>{}));
+    const config::Node now = config::load_file(opt.scene, opt.overrides);
+    const std::vector<SceneChange> changes = physics_changes(was, now);
+    if (!changes.empty()) {
+      std::string list;
+      for (const auto& c : changes) list += fmt::format("\n  {}: was {}, now {}", c.key, c.was, c.now);
+      std::cerr << fmt::format(
+          "cosim: --restart: {} changes the scene the checkpoint of cycle {} was written with ({}):{}\nA restart "
+          "may change only the end time, the checkpoint settings, timeouts and threads; start a new run for the "
+          "rest.\n",
+          opt.scene, set.cycle, set.dir.string(), list);
+      return std::nullopt;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: --restart: " << e.what() << "\n";
+    return std::nullopt;
+  }
+  std::cerr << fmt::format("cosim: restarting from the checkpoint of cycle {} at t = {:.9g} s ({})\n", set.cycle,
+                           set.time, set.dir.string());
+  return set.dir;
+}
+}  // namespace
+
 int check(const LaunchOptions& opt) {
   const auto plan = read_plan(opt);
   if (!plan) return 2;
@@ -224,7 +263,19 @@ int run(const LaunchOptions& opt) {
   const bool coupled = plan->coupled;
   const std::string name = plan->name;
   const LaunchOptions eff = plan->eff;
-  const fs::path out = opt.out.empty() ? fs::path("runs") / name : opt.out;
+  if (!opt.restart.empty() && !opt.out.empty() && fs::absolute(opt.out) != fs::absolute(opt.restart)) {
+    std::cerr << fmt::format("cosim: --restart {} continues that run in its own directory; --out {} differs\n",
+                             opt.restart.string(), opt.out.string());
+    return 2;
+  }
+  const fs::path out = !opt.restart.empty() ? opt.restart : opt.out.empty() ? fs::path("runs") / name : opt.out;
+  const fs::path checkpoints = fs::absolute(out) / "checkpoints";
+  fs::path restart_set;
+  if (!opt.restart.empty()) {
+    const auto set = restart_set_for(opt, checkpoints);
+    if (!set) return 2;
+    restart_set = *set;
+  }
   // The endpoint before the run directory: a run that cannot start leaves no directory behind.
   const std::string token = make_token();
   std::string endpoint;
@@ -285,6 +336,9 @@ int run(const LaunchOptions& opt) {
   const auto with_common = [&](std::vector<std::string> argv, const char* sub, bool client) {
     argv.push_back(scene.string());
     argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
+    // The time driver (the coupler, or the fluid alone) writes the checkpoint sets; every process restarts.
+    if (!client || !coupled) argv.insert(argv.end(), {"--checkpoints", checkpoints.string()});
+    if (!restart_set.empty()) argv.insert(argv.end(), {"--restart", restart_set.string()});
     // The token goes by the environment ($COSIM_TOKEN, set below): a command line is world-readable.
     if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint}); }
     for (const auto& o : opt.overrides) argv.insert(argv.end(), {"--set", o});

@@ -29,6 +29,12 @@ int main(int argc, char** argv) {
   run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
   run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
   run->add_flag("--quiet", o.quiet, "no progress line");
+  run->add_option("--restart", o.restart,
+                  "resume the run in this run directory from its newest complete checkpoint set (the scene may "
+                  "change only its end time, checkpoint settings, timeouts and threads)")
+      ->check(CLI::ExistingDirectory);
+  run->add_option("--from", o.restart_from, "with --restart: the checkpoint set of this cycle instead of the newest")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--progress-every", o.progress_every,
                   "seconds between progress lines when stderr is not a terminal (a log), default 30")
       ->check(CLI::PositiveNumber);
@@ -52,7 +58,9 @@ int main(int argc, char** argv) {
       "runs/shock_panel_2d\n"
       "  cosim run configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]'\n"
       "  cosim run configs/piston_2d.yaml --set coupling.time.end=1e-3 --quiet\n"
-      "  cosim run configs/piston_2d.yaml --tcp             over tcp://127.0.0.1 (processes on one host)");
+      "  cosim run configs/piston_2d.yaml --tcp             over tcp://127.0.0.1 (processes on one host)\n"
+      "  cosim run configs/piston_2d.yaml --restart runs/piston_2d          resume from the newest checkpoint\n"
+      "  cosim run configs/piston_2d.yaml --restart runs/piston_2d --from 400 --set coupling.time.end=2.0");
   // The word the user typed is named, before CLI11's "A subcommand is required" or "--out is required".
   std::string unknown;
   if (argc == 1) {

@@ -30,6 +30,11 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   app.add_option("--token", opt.token,
                  "coupled run: the per-run token the coupler expects (default: $COSIM_TOKEN, which cosim run sets: a "
                  "command line is visible to every user of the machine, an environment only to its owner)");
+  app.add_option("--restart", opt.restart,
+                 "resume from this checkpoint set (a directory RUN/checkpoints/NNNNNNNNN; cosim run --restart RUN "
+                 "chooses it)");
+  app.add_option("--checkpoints", opt.checkpoints,
+                 "standalone run: the directory of its checkpoint sets (default OUT/checkpoints)");
   app.set_version_flag("--version", version_line(name));
   if (const std::string unknown = unknown_option(app, argc, argv); !unknown.empty()) {
     std::cerr << name << ": " << unknown << "\nRun with --help for more information.\n";
@@ -47,6 +52,7 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
     return 2;
   }
   if (opt.token.empty()) opt.token = token_from_environment();
+  if (opt.checkpoints.empty() && !opt.out_dir.empty()) opt.checkpoints = opt.out_dir / "checkpoints";
   spdlog::set_default_logger(spdlog::stderr_color_mt(name));  // stdout stays free for data
   spdlog::set_pattern("[" + name + "] %^%l%$: %v");
   if (opt.quiet) spdlog::set_level(spdlog::level::warn);

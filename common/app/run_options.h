@@ -1,5 +1,6 @@
 // Command line of a standalone solver run and the steps every run starts with.
 //   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N] [--coupler EP --token T]
+//                   [--restart SET] [--checkpoints ROOT]
 //   NAME SCENE.yaml --check [--set key.path=value ...]
 #pragma once
 
@@ -23,6 +24,8 @@ struct RunOptions {
   std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
   std::string token;    // per-run token of a coupled run (--token, else $COSIM_TOKEN)
   bool check = false;   // --check: validate the scene and the files it names, run nothing, write nothing
+  std::filesystem::path restart;      // --restart SET: resume from this checkpoint set (checkpoint_sets.h)
+  std::filesystem::path checkpoints;  // --checkpoints ROOT: where a fluid-only run writes its sets (OUT/checkpoints)
   bool coupled() const { return !coupler.empty(); }
   // The scene as messages name it: the user's file, also when the solver reads cosim run's copy.
   std::string scene_name() const { return config::scene_name(scene_file); }

@@ -89,6 +89,8 @@ class Node {
 
   // The raw YAML of a key (null when missing), for lenient reads of another reader's section.
   YAML::Node raw(const std::string& key) const { return at(key); }
+  // This node's own YAML (the whole document for the root), for comparing two scenes.
+  const YAML::Node& yaml() const { return node_; }
 
  private:
   YAML::Node at(const std::string& key) const;

@@ -104,6 +104,7 @@ struct Client::Impl {
     hello->set_program(opt.program);
     hello->set_pid(static_cast<long>(::getpid()));
     for (const auto& p : opt.phase_names) hello->add_phase_names(p);
+    hello->set_restarted_from(opt.restarted_from);
     data.send({encode(e)}, 5000);
     pb::Envelope w = receive("Welcome", opt.connect_timeout);
     if (!w.has_welcome()) protocol_failure(fmt::format("expected Welcome, got {}", body_name(w)));
@@ -122,6 +123,10 @@ struct Client::Impl {
 Client::Client(const ClientOptions& opt) : impl_(std::make_unique<Impl>()) {
   if (opt.role == Role::Coupler) throw CouplingError("ClientOptions.role: expected fluid or solid");
   impl_->opt = opt;
+  if (opt.restarted_from > 0) {  // the next DtDecision is the first after the set's cycle
+    impl_->cycle = opt.restarted_from;
+    impl_->time = opt.restart_time;
+  }
   impl_->data.connect(opt.endpoint);
   impl_->handshake();
 }
@@ -150,9 +155,15 @@ Directive Client::next() {
       m.protocol_failure(fmt::format("OutputRequest for cycle {}, expected cycle {}", h.cycle(), m.cycle));
     d.kind = Directive::Kind::Output;
     d.output_index = static_cast<int>(e.output_request().index());
+  } else if (e.has_checkpoint_request()) {
+    if (h.cycle() != m.cycle)
+      m.protocol_failure(fmt::format("CheckpointRequest for cycle {}, expected cycle {}", h.cycle(), m.cycle));
+    d.kind = Directive::Kind::Checkpoint;
+    d.directory = e.checkpoint_request().directory();
   } else {
     m.protocol_failure(
-        fmt::format("expected DtDecision, OutputRequest or Stop after cycle {}, got {}", m.cycle, body_name(e)));
+        fmt::format("expected DtDecision, OutputRequest, CheckpointRequest or Stop after cycle {}, got {}", m.cycle,
+                    body_name(e)));
   }
   d.cycle = h.cycle();
   d.time = h.time();
@@ -187,6 +198,13 @@ void Client::propose_dt(double dt) {
         fmt::format("{}: DtProposal.dt: {}, expected a finite number > 0", role_name(impl_->opt.role), dt));
   pb::Envelope e = impl_->envelope();
   e.mutable_dt_proposal()->set_dt(dt);
+  impl_->send(e);
+}
+
+void Client::confirm_checkpoint(const std::string& part, std::uint64_t bytes) {
+  pb::Envelope e = impl_->envelope();
+  e.mutable_checkpoint_written()->set_part(part);
+  e.mutable_checkpoint_written()->set_bytes(bytes);
   impl_->send(e);
 }
 

@@ -6,6 +6,7 @@
 //     Directive d = c.next();                      // DtDecision, OutputRequest or Stop
 //     if (d.kind == Directive::Kind::Stop) break;
 //     if (d.kind == Directive::Kind::Output) { write snapshot d.output_index; continue; }
+//     if (d.kind == Directive::Kind::Checkpoint) { write the state into d.directory; c.confirm_checkpoint(..); continue; }
 //     ... solver-specific cycle with one c.propose_dt(stable_dt) (docs/protocol.md "Writing a solver client":
 //     where it goes depends on c.scheme() for the fluid) ...
 //   }
@@ -40,6 +41,10 @@ struct ClientOptions {
   // Checked while waiting for the coupler (every 0.1 s): true stops the wait with RunStopped (the solvers pass
   // their SIGINT/SIGTERM flag, so a signal ends a solver at once even while the coupler is silent).
   std::function<bool()> should_stop;
+  // A restarted solver: the cycle of the checkpoint set it restored (Hello.restarted_from); it then expects the
+  // DtDecision of cycle restarted_from + 1 first. 0: a fresh start.
+  long restarted_from = 0;
+  double restart_time = 0;  // [s] the set's time
 };
 
 class Client {
@@ -58,6 +63,8 @@ class Client {
   void send_samples(const FluidSamples& s);  // fluid, once per cycle
   InterfaceStates receive_states();          // both, once per cycle
   void propose_dt(double dt);                // both, once per cycle [s]
+  // Answers a Checkpoint directive: this solver's part `part` (a file name in the set directory) is written.
+  void confirm_checkpoint(const std::string& part, std::uint64_t bytes);
 
   // Tells the coupler that this solver cannot go on (best effort, never throws).
   void report_error(const std::string& reason) noexcept;

@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -25,14 +26,18 @@ namespace cosim::coupling {
 
 // Connects the solver of a coupled run (opt.coupler, opt.token) to its coupler: handshake with the scene hash
 // of the same file and overrides. Logs and returns null when that fails (the caller exits with 5).
+// A restarted solver passes the cycle and time of the set it restored.
 inline std::unique_ptr<Client> connect_solver(const app::RunOptions& opt, Role role, const std::string& program,
-                                              std::vector<std::string> phase_names = {}) {
+                                              std::vector<std::string> phase_names = {}, long restarted_from = 0,
+                                              double restart_time = 0) {
   ClientOptions co;
   co.endpoint = opt.coupler;
   co.token = opt.token;
   co.role = role;
   co.program = program;
   co.phase_names = std::move(phase_names);
+  co.restarted_from = restarted_from;
+  co.restart_time = restart_time;
   co.should_stop = [] { return app::interrupted(); };  // SIGINT/SIGTERM end a wait on a silent coupler at once
   try {
     co.scene_hash = scene_hash(opt.scene_file, opt.overrides);
@@ -50,12 +55,15 @@ struct SolverLoopResult {
   double wall = 0;  // [s]
   long cycles = 0;  // DtDecisions obeyed
   int snapshots = 0;
+  int checkpoints = 0;
 };
 
 // cycle(const Directive&) runs one coupled cycle (Advance); output(const Directive&) writes snapshot
-// d.output_index. Solver time and the coupler's t^n are compared at every cycle.
-template <class Solver, class Cycle, class Output>
-SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycle, Output&& output) {
+// d.output_index; checkpoint(const Directive&) writes this solver's part into d.directory and returns its file
+// name there (the loop confirms it to the coupler). Solver time and the coupler's t^n are compared at every cycle.
+template <class Solver, class Cycle, class Output, class Checkpoint>
+SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycle, Output&& output,
+                                 Checkpoint&& checkpoint) {
   SolverLoopResult r;
   const auto t0 = std::chrono::steady_clock::now();
   const auto fail = [&](int code, const std::string& status, const std::string& msg, bool tell) {
@@ -76,6 +84,14 @@ SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycl
       if (d.kind == Directive::Kind::Output) {
         output(d);
         ++r.snapshots;
+        continue;
+      }
+      if (d.kind == Directive::Kind::Checkpoint) {
+        const std::string part = checkpoint(d);
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(std::filesystem::path(d.directory) / part, ec);
+        client.confirm_checkpoint(part, ec ? 0 : bytes);
+        ++r.checkpoints;
         continue;
       }
       const double scale = std::max({std::abs(d.time), std::abs(sim.time()), d.dt, 1e-300});

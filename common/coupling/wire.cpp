@@ -90,6 +90,8 @@ std::string body_name(pb::Envelope::BodyCase c) {
     case pb::Envelope::kStop: return "Stop";
     case pb::Envelope::kError: return "Error";
     case pb::Envelope::kHeartbeat: return "Heartbeat";
+    case pb::Envelope::kCheckpointRequest: return "CheckpointRequest";
+    case pb::Envelope::kCheckpointWritten: return "CheckpointWritten";
     case pb::Envelope::BODY_NOT_SET: return "(empty)";
   }
   return "(unknown)";
@@ -301,6 +303,17 @@ std::string validate(const pb::Envelope& e) {
       if (!(e.dt_decision().dt() >= 0) || !std::isfinite(e.dt_decision().dt()))
         return fmt::format("DtDecision.dt: {}, expected a finite number >= 0", e.dt_decision().dt());
       return "";
+    case pb::Envelope::kCheckpointRequest:
+      if (e.checkpoint_request().directory().empty() || e.checkpoint_request().directory()[0] != '/')
+        return fmt::format("CheckpointRequest.directory: '{}', expected an absolute path",
+                           e.checkpoint_request().directory());
+      return "";
+    case pb::Envelope::kCheckpointWritten: {
+      const std::string& part = e.checkpoint_written().part();
+      if (part.empty() || part.find('/') != std::string::npos || part == "." || part == "..")
+        return fmt::format("CheckpointWritten.part: '{}', expected a file name in the set directory", part);
+      return "";
+    }
     default: return "";
   }
 }

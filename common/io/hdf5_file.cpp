@@ -251,6 +251,11 @@ void Hdf5File::write_dataset(const std::string& name, std::span<const std::int64
                     H5T_STD_I64LE, H5T_NATIVE_INT64);
 }
 
+void Hdf5File::write_dataset(const std::string& name, std::span<const std::uint8_t> data, const Hdf5Shape& shape) {
+  write_dataset_raw(checked_id("write a dataset"), dataset_site(path_, name), name, data.data(), data.size(), shape,
+                    H5T_STD_U8LE, H5T_NATIVE_UINT8);
+}
+
 Hdf5Shape Hdf5File::dataset_shape(const std::string& name) const {
   const hid_t file = checked_id("read a dataset");
   const Site site = dataset_site(path_, name);
@@ -270,6 +275,11 @@ std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
 std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
   return read_dataset_raw<std::int64_t>(checked_id("read a dataset"), dataset_site(path_, name), name,
                                         H5T_NATIVE_INT64);
+}
+
+std::vector<std::uint8_t> Hdf5File::read_bytes(const std::string& name) const {
+  return read_dataset_raw<std::uint8_t>(checked_id("read a dataset"), dataset_site(path_, name), name,
+                                        H5T_NATIVE_UINT8);
 }
 
 void Hdf5File::write_attribute(const std::string& object, const std::string& name, double value) {

@@ -39,10 +39,12 @@ class Hdf5File {
   // 1-D data written as a dataset of `shape`; the product of `shape` must equal data.size().
   void write_dataset(const std::string& name, std::span<const double> data, const Hdf5Shape& shape);
   void write_dataset(const std::string& name, std::span<const std::int64_t> data, const Hdf5Shape& shape);
+  void write_dataset(const std::string& name, std::span<const std::uint8_t> data, const Hdf5Shape& shape);
 
   Hdf5Shape dataset_shape(const std::string& name) const;
   std::vector<double> read_doubles(const std::string& name) const;       // flattened, row-major
   std::vector<std::int64_t> read_int64s(const std::string& name) const;  // flattened, row-major
+  std::vector<std::uint8_t> read_bytes(const std::string& name) const;   // flattened, row-major
 
   // Attributes on an existing object ("/" is the root). Scalars get a scalar dataspace, spans a 1-D one.
   // An existing attribute of the same name is replaced.

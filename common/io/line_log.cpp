@@ -17,6 +17,23 @@ LineLog::LineLog(std::filesystem::path path, std::string_view header) : path_(st
   append(header);
 }
 
+LineLog LineLog::resume(std::filesystem::path path, long long size) {
+  LineLog log;
+  log.path_ = std::move(path);
+  log.fd_ = ::open(log.path_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (log.fd_ < 0)
+    throw std::runtime_error(fmt::format("{}: cannot continue it: {}", log.path_.string(), std::strerror(errno)));
+  const off_t end = ::lseek(log.fd_, 0, SEEK_END);
+  if (end < size)
+    throw std::runtime_error(fmt::format("{}: {} bytes, shorter than the {} the checkpoint recorded",
+                                         log.path_.string(), static_cast<long long>(end), size));
+  if (::ftruncate(log.fd_, size) != 0 || ::lseek(log.fd_, size, SEEK_SET) < 0)
+    throw std::runtime_error(fmt::format("{}: cannot cut it back to the checkpoint: {}", log.path_.string(),
+                                         std::strerror(errno)));
+  log.size_ = size;
+  return log;
+}
+
 LineLog::LineLog(LineLog&& o) noexcept : path_(std::move(o.path_)), fd_(std::exchange(o.fd_, -1)), size_(o.size_) {}
 
 LineLog& LineLog::operator=(LineLog&& o) noexcept {

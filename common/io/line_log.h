@@ -15,6 +15,9 @@ class LineLog {
   // Creates (truncates) `path` and writes `header` (one or more whole lines). Throws std::runtime_error naming the
   // file when it cannot.
   LineLog(std::filesystem::path path, std::string_view header);
+  // Continues a table a checkpoint recorded at `size` bytes: lines written after it (by the run that stopped) are
+  // cut off. Throws std::runtime_error naming the file when it is missing or shorter than `size`.
+  static LineLog resume(std::filesystem::path path, long long size);
   LineLog(LineLog&& o) noexcept;
   LineLog& operator=(LineLog&& o) noexcept;
   LineLog(const LineLog&) = delete;
@@ -25,6 +28,7 @@ class LineLog {
   // std::runtime_error names the file and the reason.
   void append(std::string_view lines);
   const std::filesystem::path& path() const { return path_; }
+  long long size() const { return size_; }  // bytes of whole lines written (what a checkpoint records)
 
  private:
   std::filesystem::path path_;

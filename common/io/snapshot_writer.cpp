@@ -314,7 +314,30 @@ void SnapshotSeries::prepare_directory() const {
   if (!fs::is_directory(dir_, ec)) {
     throw std::runtime_error(fmt::format("snapshot: output directory '{}' does not exist", dir_.string()));
   }
-  if (count() == 0) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
+  if (count() == 0 && !resumed_) remove_numbered_files(dir_, basename_ + "_", ".h5");  // an earlier run's series
+}
+
+void SnapshotSeries::resume(std::vector<std::string> entries) {
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    std::error_code ec;
+    if (!fs::is_regular_file(dir_ / file_name(i), ec))
+      throw std::runtime_error(fmt::format("{}: snapshot {} of the checkpointed series is missing",
+                                           (dir_ / file_name(i)).string(), i));
+  }
+  // Later snapshots of the run that stopped: written again (or, with an earlier end time, not at all).
+  std::error_code ec;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string prefix = basename_ + "_";
+    if (name.size() != prefix.size() + 9 || !name.starts_with(prefix) || !name.ends_with(".h5")) continue;
+    const std::string digits = name.substr(prefix.size(), 6);
+    if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::error_code rm;
+    if (std::stoul(digits) >= entries.size()) fs::remove(it->path(), rm);
+  }
+  grids_ = std::move(entries);
+  resumed_ = true;
+  write_file_atomically(xdmf_path(), xdmf_document(basename_, grids_));
 }
 
 fs::path SnapshotSeries::write(double time, std::int64_t step, const UniformGrid& g,

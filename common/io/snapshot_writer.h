@@ -92,6 +92,11 @@ class SnapshotSeries {
                               const std::vector<FieldView>& fields);
 
   std::size_t count() const { return grids_.size(); }
+  // The XDMF entries of the snapshots written so far, for a checkpoint; resume() takes them back: the series then
+  // continues after them (the files of later snapshots, written by the run that stopped, are removed and the .xmf
+  // lists the kept ones). resume() throws std::runtime_error naming a kept snapshot that is missing.
+  const std::vector<std::string>& entries() const { return grids_; }
+  void resume(std::vector<std::string> entries);
   std::filesystem::path xdmf_path() const;
 
  private:
@@ -103,6 +108,7 @@ class SnapshotSeries {
   std::filesystem::path dir_;
   std::string basename_;
   std::vector<std::string> grids_;  // XDMF <Grid> element of each snapshot written so far
+  bool resumed_ = false;            // continues a checkpointed series: nothing of it is removed
 };
 
 // Removes the regular files <prefix>NNNNNN<suffix> (exactly six digits) from dir: what an earlier run

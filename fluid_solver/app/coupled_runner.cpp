@@ -8,6 +8,7 @@
 #include "common/coupling/client.h"
 #include "common/coupling/scene_hash.h"
 #include "common/coupling/solver_loop.h"
+#include "fluid_solver/app/fluid_checkpoint.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/app/runner.h"
 #include "fluid_solver/coupled/coupled_boundary.h"
@@ -38,24 +39,38 @@ int run_fluid_coupled(const RunOptions& opt) {
   if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders
   app::install_interrupt_handlers();
 
+  io::SnapshotSeries series(opt.out_dir, "fluid");
+  RunRecord rec;
+  double solver_seconds = 0;
+  bool first = true;
+  FluidRunState restored;
+  if (!opt.restart.empty()) {
+    try {
+      restored = read_fluid_part(opt.restart, *sim, series);
+    } catch (const std::exception& e) {
+      spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
+      return 2;
+    }
+    rec.start_totals = restored.start_totals;
+    solver_seconds = restored.counters.value("flow_solver_seconds", 0.0);
+    first = false;
+    spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", restored.cycle, restored.time, opt.restart.string());
+  }
+
   std::vector<std::string> phase_names;
   for (const auto& ph : scene.phases) phase_names.push_back(ph.name);
-  std::unique_ptr<coupling::Client> client =
-      coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phase_names));
+  std::unique_ptr<coupling::Client> client = coupling::connect_solver(
+      opt, coupling::Role::Fluid, "fluid_solver", std::move(phase_names), restored.cycle, restored.time);
   if (!client) return 5;
   boundary->sample_wall_velocity(client->mode() == coupling::Mode::Robin);
   spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,
                sim->interior_cells(), scene.num_phases(), opt.coupler, coupling::mode_name(client->mode()));
 
-  io::SnapshotSeries series(opt.out_dir, "fluid");
-  RunRecord rec;
-  double solver_seconds = 0;
-  bool first = true;
   // Pipelined cycle: the proposal for the next step comes from t^n, right after the samples, so the coupler
   // can start the solid's next step while this one advances; the step taken may then exceed this state's
   // stable step a little: the largest ratio is reported (max_step_over_stable), a warning above 1.1.
   const bool pipelined = client->scheme() == coupling::Scheme::Pipelined;
-  double max_step_over_stable = 0;
+  double max_step_over_stable = restored.counters.value("max_step_over_stable", 0.0);
   bool warned = false;
   const auto note_lag = [&](const coupling::Directive& d, double stable) {
     const double ratio = d.dt / stable;
@@ -93,13 +108,20 @@ int run_fluid_coupled(const RunOptions& opt) {
     if (!pipelined) client->propose_dt(next);
   };
   const auto output = [&](const coupling::Directive&) { write_snapshot(series, *sim, boundary->segments_csv()); };
-  const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output);
+  const auto checkpoint = [&](const coupling::Directive& d) {
+    FluidRunState st{d.cycle, d.time, rec.start_totals,
+                     {{"flow_solver_seconds", solver_seconds}, {"max_step_over_stable", max_step_over_stable}}};
+    return write_fluid_part(d.directory, *sim, series, st);
+  };
+  const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
   rec.extra["coupling"] = {{"endpoint", opt.coupler},
                            {"cycles", res.cycles},
                            {"snapshots", res.snapshots},
+                           {"checkpoints", res.checkpoints},
+                           {"restarted_from", opt.restart.empty() ? nlohmann::json() : nlohmann::json(restored.cycle)},
                            {"flow_solver_seconds", solver_seconds},
                            {"geometry_seconds", boundary->geometry_seconds()},
                            {"scheme", coupling::scheme_name(client->scheme())},

@@ -135,6 +135,20 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   }
   std::size_t interior_cells() const override { return inner_->interior_cells(); }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
+  // The bodies move with the flow's steps: their vertices belong to the state.
+  void save_state(checkpoint::PartWriter& w) const override {
+    inner_->save_state(w);
+    std::vector<double> x;
+    for (const auto& v : surface_.vertices) x.insert(x.end(), v.begin(), v.end());
+    w.put("fluid.embedded_vertices", x);
+  }
+  void restore_state(const checkpoint::PartReader& r) override {
+    inner_->restore_state(r);
+    const std::vector<double> x = r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size());
+    for (std::size_t i = 0; i < surface_.vertices.size(); ++i)
+      surface_.vertices[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+    update();
+  }
   void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checkpoint/part_file.h"
 #include "fluid_solver/core/embedded_state.h"
 #include "fluid_solver/core/scene.h"
 
@@ -61,6 +62,11 @@ class FluidSimulation {
   virtual std::vector<PhaseTotals> boundary_inflow() const = 0;
   // States of the given padded cells, phase-major per cell: out[n * phases + k] (phases = scene().num_phases()).
   virtual void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const = 0;
+  // Checkpoints: the whole evolving state (conserved variables of every cell as stored, time, steps, boundary
+  // inflow), so that a restored solver continues bit for bit. restore_state throws std::runtime_error naming the
+  // file and the entry when the part does not fit this scene (another mesh or phase set).
+  virtual void save_state(checkpoint::PartWriter& w) const = 0;
+  virtual void restore_state(const checkpoint::PartReader& r) = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state

@@ -268,6 +268,26 @@ class Solver final : public FluidSimulation {
     return out;
   }
 
+  void save_state(checkpoint::PartWriter& w) const override {
+    w.put("fluid.conserved", U_.data);  // every padded cell as stored: a restart continues bit for bit
+    w.put("fluid.boundary_inflow", std::span<const double>(inflow_.data(), inflow_.size()));
+    w.put_scalar("fluid.time", t_);
+    w.put_integer("fluid.steps", steps_);
+    w.put_integer("fluid.conserved_vars", ncons_);
+  }
+
+  void restore_state(const checkpoint::PartReader& r) override {
+    if (r.integer("fluid.conserved_vars") != ncons_)
+      throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}", r.path().string(),
+                                           r.integer("fluid.conserved_vars"), ncons_));
+    U_.data = r.doubles("fluid.conserved", U_.data.size());
+    const std::vector<double> in = r.doubles("fluid.boundary_inflow", inflow_.size());
+    std::copy(in.begin(), in.end(), inflow_.begin());
+    t_ = r.scalar("fluid.time");
+    steps_ = r.integer("fluid.steps");
+    primitives_valid_ = false;
+  }
+
   std::vector<PhaseTotals> totals() const override {
     std::vector<PhaseTotals> out(NP);
     const double vol = g_.cell_volume();

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checkpoint/part_file.h"
 #include "solid_solver/ale/ale_mesh.h"
 #include "solid_solver/ale/remap.h"
 #include "solid_solver/core/boundary_faces.h"
@@ -78,6 +79,10 @@ class Simulation {
   const RemapFlux& ale_flux() const { return ale_total_; }
   // Rigid blocks (blocks[].rigid), in block order.
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_; }
+  // Checkpoints (simulation_checkpoint.cpp): the evolving state, restored bit for bit; restore_state throws
+  // std::runtime_error naming the file and the entry when the part does not fit this mesh.
+  void save_state(checkpoint::PartWriter& w) const;
+  void restore_state(const checkpoint::PartReader& r);
   // Bytes of state per element (nodal arrays apportioned), for the benchmark report.
   double bytes_per_element() const;
 

@@ -1,5 +1,7 @@
 #include "solid_solver/io/block_history.h"
 
+#include "common/checkpoint/output_resume.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -35,10 +37,22 @@ std::vector<BlockTotals> block_totals(const Simulation& sim) {
   return out;
 }
 
-BlockHistory::BlockHistory(const std::filesystem::path& dir)
-    : out_(dir / "block_history.csv",
-           "time,step,block,mass,velocity_x,velocity_y,velocity_z,kinetic_energy,internal_energy,plastic_work,"
-           "max_von_mises,max_plastic_strain\n") {}
+BlockHistory::BlockHistory(const std::filesystem::path& dir, const checkpoint::PartReader* resume) {
+  const std::filesystem::path file = dir / "block_history.csv";
+  if (resume) {
+    out_ = checkpoint::resume_log(*resume, "block_history", file);
+    last_step_ = resume->integer("block_history.last_step");
+  } else {
+    out_ = io::LineLog(file,
+                       "time,step,block,mass,velocity_x,velocity_y,velocity_z,kinetic_energy,internal_energy,"
+                       "plastic_work,max_von_mises,max_plastic_strain\n");
+  }
+}
+
+void BlockHistory::save(checkpoint::PartWriter& w) const {
+  checkpoint::put_log(w, "block_history", out_);
+  w.put_integer("block_history.last_step", last_step_);
+}
 
 void BlockHistory::record(const Simulation& sim) {
   if (sim.steps() == last_step_) return;

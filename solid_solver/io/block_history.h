@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "common/checkpoint/part_file.h"
 #include "common/io/line_log.h"
 #include "solid_solver/core/simulation.h"
 
@@ -25,7 +26,9 @@ std::vector<BlockTotals> block_totals(const Simulation& sim);
 
 class BlockHistory {
  public:
-  explicit BlockHistory(const std::filesystem::path& dir);  // throws std::runtime_error naming the file
+  // Throws std::runtime_error naming the file. With `resume`, the table continues from the checkpoint (save()).
+  explicit BlockHistory(const std::filesystem::path& dir, const checkpoint::PartReader* resume = nullptr);
+  void save(checkpoint::PartWriter& w) const;
   // Appends the rows of the current state, once per step (a second call at the same step writes nothing).
   void record(const Simulation& sim);
 

@@ -1,0 +1,66 @@
+// The checkpoint sets of a run and when to write one.
+//
+// Layout: ROOT/NNNNNNNNN/ (ROOT is normally RUN_DIR/checkpoints; NNNNNNNNN the coupled cycle, or the standalone
+// fluid's step, the set holds) with one part per process (fluid.h5, solid.h5, coupler.h5: part_file.h) and
+// manifest.json, written last and atomically by the process that drives the time once every part is in. A set
+// without a manifest, or one whose manifest names a part that is missing, is incomplete: a restart never uses it
+// and prune() removes it once a later set is complete.
+//
+// Scene keys (coupling.checkpoint in a coupled run, fluid.checkpoint in a fluid-only one):
+//   checkpoint: {interval: 1.0e-3, cycles: 500, keep: 2}   # [s] of simulated time, [-] cycles; either or both
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/config/config.h"
+
+namespace cosim::checkpoint {
+
+inline constexpr const char* kManifestName = "manifest.json";
+inline constexpr const char* kSetFormat = "cosim-checkpoint-set-1";
+
+struct CheckpointPolicy {
+  double interval = 0;  // [s] of simulated time between sets; 0: none by time
+  long cycles = 0;      // cycles (steps) between sets; 0: none by count
+  int keep = 2;         // complete sets kept (the newest)
+  bool enabled() const { return interval > 0 || cycles > 0; }
+  // A set is due after the cycle that took the time from t_prev to t when it crossed a multiple of the interval,
+  // or when the cycle count is a multiple of `cycles`.
+  bool due(long cycle, double t_prev, double t) const;
+};
+
+// Reads interval, cycles and keep from `section` (null: checkpoints off) and finishes it.
+CheckpointPolicy read_checkpoint_policy(config::Node* section);
+
+std::filesystem::path set_path(const std::filesystem::path& root, long cycle);
+
+struct SetInfo {
+  long cycle = 0;
+  double time = 0;
+  std::filesystem::path dir;
+  nlohmann::json manifest;
+};
+
+// Writes DIR/manifest.json atomically: `m` with format, cycle, time added. m["parts"] lists the part files; each
+// must exist in `dir` (std::runtime_error naming the missing one otherwise: the set stays incomplete).
+void write_manifest(const std::filesystem::path& dir, long cycle, double time, nlohmann::json m);
+
+// The complete sets under root, oldest first (a missing root: none).
+std::vector<SetInfo> complete_sets(const std::filesystem::path& root);
+
+// The set a restart uses: `cycle` when given (which must be complete), else the newest complete one.
+// Throws std::runtime_error saying what is there when there is none.
+SetInfo find_set(const std::filesystem::path& root, std::optional<long> cycle = std::nullopt);
+
+// Reads and checks one set's manifest (std::runtime_error naming the file when it is not a complete set).
+SetInfo read_set(const std::filesystem::path& dir);
+
+// Keeps the newest `keep` complete sets and removes the older ones and every incomplete set older than the newest
+// complete one (best effort: errors are ignored, a restart only ever uses complete sets).
+void prune(const std::filesystem::path& root, int keep);
+
+}  // namespace cosim::checkpoint

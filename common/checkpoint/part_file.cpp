@@ -1,0 +1,108 @@
+#include "common/checkpoint/part_file.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "common/io/atomic_file.h"
+
+namespace cosim::checkpoint {
+
+namespace fs = std::filesystem;
+
+PartWriter::PartWriter(fs::path path, std::string_view kind)
+    : path_(std::move(path)), tmp_(io::temp_path_for(path_)), h5_(tmp_, io::Hdf5File::Mode::Create) {
+  h5_.write_attribute("/", "format", kPartFormat);
+  h5_.write_attribute("/", "kind", kind);
+}
+
+PartWriter::~PartWriter() {
+  if (committed_) return;
+  try {
+    h5_.close();
+  } catch (...) {}  // a failed close (full disk) only leaves the temporary file, removed next
+  std::error_code ignored;
+  fs::remove(tmp_, ignored);
+}
+
+void PartWriter::put(const std::string& name, std::span<const double> v) {
+  h5_.write_dataset("/" + name, v, {v.size()});
+}
+void PartWriter::put(const std::string& name, std::span<const std::int64_t> v) {
+  h5_.write_dataset("/" + name, v, {v.size()});
+}
+void PartWriter::put(const std::string& name, std::span<const std::uint8_t> v) {
+  h5_.write_dataset("/" + name, v, {v.size()});
+}
+void PartWriter::put_text(const std::string& name, std::string_view text) {
+  put(name, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+void PartWriter::put_scalar(const std::string& name, double v) { h5_.write_attribute("/", name, v); }
+void PartWriter::put_integer(const std::string& name, std::int64_t v) { h5_.write_attribute("/", name, v); }
+
+void PartWriter::commit() {
+  h5_.close();
+  io::commit_file(tmp_, path_);
+  committed_ = true;
+}
+
+PartReader::PartReader(fs::path path, std::string_view kind)
+    : path_(std::move(path)), h5_([&] {
+        std::error_code ec;
+        if (!fs::is_regular_file(path_, ec))
+          throw std::runtime_error(fmt::format("{}: no such checkpoint part", path_.string()));
+        return io::Hdf5File(path_, io::Hdf5File::Mode::ReadOnly);
+      }()) {
+  std::string format, k;
+  try {
+    format = h5_.read_string_attribute("/", "format");
+    k = h5_.read_string_attribute("/", "kind");
+  } catch (const std::exception&) {}
+  if (format != kPartFormat)
+    throw std::runtime_error(fmt::format("{}: not a checkpoint part (format '{}', expected '{}')", path_.string(),
+                                         format, kPartFormat));
+  if (k != kind)
+    throw std::runtime_error(
+        fmt::format("{}: a checkpoint part of the {}, expected one of the {}", path_.string(), k, kind));
+}
+
+bool PartReader::has(const std::string& name) const { return h5_.exists("/" + name); }
+
+void PartReader::check_length(const std::string& name, std::size_t got, std::size_t expected) const {
+  if (expected != kAny && got != expected)
+    throw std::runtime_error(fmt::format("{}: checkpoint entry '{}' holds {} values, this run needs {} (a checkpoint "
+                                         "of another mesh or scene?)",
+                                         path_.string(), name, got, expected));
+}
+
+std::vector<double> PartReader::doubles(const std::string& name, std::size_t expected) const {
+  std::vector<double> v = h5_.read_doubles("/" + name);
+  check_length(name, v.size(), expected);
+  return v;
+}
+std::vector<std::int64_t> PartReader::integers(const std::string& name, std::size_t expected) const {
+  std::vector<std::int64_t> v = h5_.read_int64s("/" + name);
+  check_length(name, v.size(), expected);
+  return v;
+}
+std::vector<std::uint8_t> PartReader::bytes(const std::string& name, std::size_t expected) const {
+  std::vector<std::uint8_t> v = h5_.read_bytes("/" + name);
+  check_length(name, v.size(), expected);
+  return v;
+}
+std::string PartReader::text(const std::string& name) const {
+  const std::vector<std::uint8_t> b = bytes(name);
+  return std::string(b.begin(), b.end());
+}
+double PartReader::scalar(const std::string& name) const {
+  const std::vector<double> v = h5_.read_double_attribute("/", name);
+  if (v.size() != 1) throw std::runtime_error(fmt::format("{}: checkpoint scalar '{}' missing", path_.string(), name));
+  return v[0];
+}
+std::int64_t PartReader::integer(const std::string& name) const {
+  const std::vector<std::int64_t> v = h5_.read_int64_attribute("/", name);
+  if (v.size() != 1) throw std::runtime_error(fmt::format("{}: checkpoint integer '{}' missing", path_.string(), name));
+  return v[0];
+}
+
+}  // namespace cosim::checkpoint

@@ -1,0 +1,69 @@
+// One process's part of a checkpoint set (checkpoint_sets.h): an HDF5 file of named arrays and scalars.
+//   PartWriter w(set / "fluid.h5", "fluid");  w.put("U", U);  w.put_scalar("time", t);  w.commit();
+//   PartReader r(set / "fluid.h5", "fluid");  U = r.doubles("U", U.size());  t = r.scalar("time");
+// The writer fills <file>.tmp and publishes it whole (fsync + rename, io::commit_file): a part is either complete
+// or absent. The reader checks the format, the kind and every array's length, naming the file and the entry.
+// Layout: root attributes format = "cosim-checkpoint-1", kind, and one attribute per scalar; one dataset per array
+// (double, int64 or uint8; texts are uint8 datasets).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/io/hdf5_file.h"
+
+namespace cosim::checkpoint {
+
+inline constexpr std::string_view kPartFormat = "cosim-checkpoint-1";
+
+class PartWriter {
+ public:
+  // Throws std::runtime_error naming the file when it cannot be created.
+  PartWriter(std::filesystem::path path, std::string_view kind);
+  ~PartWriter();  // an uncommitted part is discarded (its temporary file removed)
+  PartWriter(const PartWriter&) = delete;
+  PartWriter& operator=(const PartWriter&) = delete;
+
+  void put(const std::string& name, std::span<const double> v);
+  void put(const std::string& name, std::span<const std::int64_t> v);
+  void put(const std::string& name, std::span<const std::uint8_t> v);
+  void put_text(const std::string& name, std::string_view text);
+  void put_scalar(const std::string& name, double v);
+  void put_integer(const std::string& name, std::int64_t v);
+  // Closes and publishes the file; throws std::runtime_error (disk full: the part stays absent).
+  void commit();
+
+ private:
+  std::filesystem::path path_, tmp_;
+  io::Hdf5File h5_;
+  bool committed_ = false;
+};
+
+class PartReader {
+ public:
+  static constexpr std::size_t kAny = std::numeric_limits<std::size_t>::max();
+  // Throws std::runtime_error naming the file when it is missing, unreadable, or not a part of this kind.
+  PartReader(std::filesystem::path path, std::string_view kind);
+
+  bool has(const std::string& name) const;
+  // The array `name`; with `expected` != kAny its length must be that (std::runtime_error otherwise).
+  std::vector<double> doubles(const std::string& name, std::size_t expected = kAny) const;
+  std::vector<std::int64_t> integers(const std::string& name, std::size_t expected = kAny) const;
+  std::vector<std::uint8_t> bytes(const std::string& name, std::size_t expected = kAny) const;
+  std::string text(const std::string& name) const;
+  double scalar(const std::string& name) const;
+  std::int64_t integer(const std::string& name) const;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  void check_length(const std::string& name, std::size_t got, std::size_t expected) const;
+  std::filesystem::path path_;
+  io::Hdf5File h5_;
+};
+
+}  // namespace cosim::checkpoint

@@ -1,0 +1,33 @@
+#include "fluid_solver/app/fluid_checkpoint.h"
+
+#include "common/checkpoint/output_resume.h"
+#include "common/checkpoint/part_file.h"
+
+namespace cosim::fluid {
+
+std::string write_fluid_part(const std::filesystem::path& dir, const FluidSimulation& sim,
+                             const io::SnapshotSeries& series, const FluidRunState& run) {
+  checkpoint::PartWriter w(dir / kFluidPart, "fluid");
+  w.put_integer("cycle", run.cycle);
+  w.put_scalar("time", run.time);
+  sim.save_state(w);
+  checkpoint::put_series(w, "fluid", series);
+  w.put_text("run.start_totals", run.start_totals.dump());
+  w.put_text("run.counters", run.counters.dump());
+  w.commit();
+  return kFluidPart;
+}
+
+FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series) {
+  const checkpoint::PartReader r(set / kFluidPart, "fluid");
+  FluidRunState run;
+  run.cycle = r.integer("cycle");
+  run.time = r.scalar("time");
+  sim.restore_state(r);
+  checkpoint::resume_series(r, "fluid", series);
+  run.start_totals = nlohmann::json::parse(r.text("run.start_totals"));
+  run.counters = nlohmann::json::parse(r.text("run.counters"));
+  return run;
+}
+
+}  // namespace cosim::fluid
