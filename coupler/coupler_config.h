@@ -31,7 +31,7 @@ struct CouplerConfig {
   double connect_timeout = 30.0;
   double step_timeout = 0.0;  // 0: automatic (HubOptions)
   double max_message_mb = 256.0;
-  bool pressure_predictor = true;  // predictor: linear
+  bool pressure_predictor = true;           // predictor: linear
   checkpoint::CheckpointPolicy checkpoint;  // off unless coupling.checkpoint is given
 };
 

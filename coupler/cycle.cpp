@@ -5,12 +5,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "common/app/run_driver.h"
-#include "common/app/version.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/part_file.h"
 #include "common/coupling/errors.h"
@@ -177,9 +175,10 @@ struct Loop {
     sum.cycles = s.cycle - 1;
     sum.time = s.time;
     if (s.time >= cfg.t_end * (1.0 - 1e-14))
-      throw coupling::CouplingError(fmt::format("--restart {}: the checkpoint is at t = {:.9g} s, at or after the "
-                                                "scene's end time coupling.time.end = {:g} s",
-                                                ck.restart.string(), s.time, cfg.t_end));
+      throw coupling::CouplingError(
+          fmt::format("--restart {}: the checkpoint is at t = {:.9g} s, at or after the "
+                      "scene's end time coupling.time.end = {:g} s",
+                      ck.restart.string(), s.time, cfg.t_end));
     spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", s.cycle - 1, s.time, ck.restart.string());
     return s;
   }
@@ -187,13 +186,10 @@ struct Loop {
   // Asks both solvers for their parts of set n, writes its own, and completes the set with its manifest only when
   // both have confirmed; older sets beyond cfg.checkpoint.keep are removed.
   void write_checkpoint(long n, double t, double proposal, int out_index) {
-    namespace fs = std::filesystem;
-    const fs::path dir = fs::absolute(checkpoint::set_path(ck.root, n));
-    std::error_code ec;
-    fs::remove_all(dir, ec);  // an incomplete set of a run that stopped here before
-    fs::create_directories(dir, ec);
-    if (ec)
-      throw coupling::CouplingError(fmt::format("{}: cannot create the checkpoint set: {}", dir.string(), ec.message()));
+    std::filesystem::path dir;
+    try {
+      dir = checkpoint::prepare_set(ck.root, n);
+    } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
     pb::Envelope req = envelope(hub, n, t);
     req.mutable_checkpoint_request()->set_directory(dir.string());
     send_both(req);
@@ -211,14 +207,9 @@ struct Loop {
     });
     const auto done = hub.expect_both(pb::Envelope::kCheckpointWritten, n);
     work([&] {
-      nlohmann::json m;
+      nlohmann::json m = checkpoint::scene_record(ck.scene_file, ck.overrides);
       m["parts"] = {kCouplerPart, done[0].checkpoint_written().part(), done[1].checkpoint_written().part()};
-      std::ifstream in(ck.scene_file);
-      m["scene"] = std::string(std::istreambuf_iterator<char>(in), {});
-      m["overrides"] = ck.overrides;
       m["scene_hash"] = ck.scene_hash;
-      m["version"] = app::version();
-      m["git_commit"] = app::git_commit();
       checkpoint::write_manifest(dir, n, t, m);
       checkpoint::prune(ck.root, cfg.checkpoint.keep);
     });

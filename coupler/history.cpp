@@ -13,7 +13,7 @@ namespace cosim::coupler {
 namespace {
 // The histories' lines reach the file whole or not at all (io::LineLog); a failure is the coupler's error.
 io::LineLog open(const std::filesystem::path& p, std::string_view header, const checkpoint::PartReader* resume,
-                const std::string& name) {
+                 const std::string& name) {
   try {
     return resume ? checkpoint::resume_log(*resume, name, p) : io::LineLog(p, header);
   } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }

@@ -88,9 +88,9 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
                ? fmt::format("restarted from the checkpoint of cycle {}, but the run starts afresh",
                              hello.restarted_from())
                : fmt::format("{} the checkpoint of cycle {} (every process must restart from the same set)",
-                             hello.restarted_from() == 0 ? "starts afresh instead of restarting from"
-                                                         : fmt::format("restarted from cycle {}, not from",
-                                                                       hello.restarted_from()),
+                             hello.restarted_from() == 0
+                                 ? "starts afresh instead of restarting from"
+                                 : fmt::format("restarted from cycle {}, not from", hello.restarted_from()),
                              opt_.restarted_from);
   const Role r = coupling::from_pb(hello.role());
   if (peer(r).connected)

@@ -122,13 +122,13 @@ int main(int argc, char** argv) {
   ho.connect_timeout = cfg.connect_timeout;
   ho.step_timeout = cfg.step_timeout;
   ho.max_message_bytes = cfg.max_message_mb * 1024 * 1024;
-  coupler::CheckpointContext ck{checkpoints.empty() ? std::filesystem::path(out) / "checkpoints"
-                                                    : std::filesystem::path(checkpoints),
-                                restart, scene, overrides, ho.scene_hash};
+  coupler::CheckpointContext ck{
+      checkpoints.empty() ? std::filesystem::path(out) / "checkpoints" : std::filesystem::path(checkpoints), restart,
+      scene, overrides, ho.scene_hash};
   if (!restart.empty()) {
     try {  // the cycle both solvers' Hellos must name
-      ho.restarted_from = checkpoint::PartReader(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler")
-                              .integer("cycle");
+      ho.restarted_from =
+          checkpoint::PartReader(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler").integer("cycle");
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", restart, e.what());
       return 2;

@@ -19,9 +19,9 @@ struct LaunchOptions {
   std::string fluid_cmd, solid_cmd, coupler_cmd;  // empty: <dir of cosim>/fluid_solver etc.; split on spaces
   std::filesystem::path bin_dir;                  // where the default executables are
   bool quiet = false;
-  double progress_every = 30;  // [s] between progress lines when stderr is not a terminal
-  std::filesystem::path restart;   // --restart RUN: resume the run in RUN from its newest complete checkpoint set
-  long restart_from = -1;          // --from N: from set N instead (-1: the newest)
+  double progress_every = 30;     // [s] between progress lines when stderr is not a terminal
+  std::filesystem::path restart;  // --restart RUN: resume the run in RUN from its newest complete checkpoint set
+  long restart_from = -1;         // --from N: from set N instead (-1: the newest)
 };
 
 // Runs to completion; returns 0, or the failing process's exit code (1 when that is 0), 2 for bad input,

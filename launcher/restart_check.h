@@ -11,8 +11,8 @@
 namespace cosim::launcher {
 
 struct SceneChange {
-  std::string key;        // a.b.c or a.b[2]
-  std::string was, now;   // the values ("(absent)" when missing)
+  std::string key;       // a.b.c or a.b[2]
+  std::string was, now;  // the values ("(absent)" when missing)
 };
 
 // The keys whose values differ between the scene of the set and the scene given now, less those a restart may

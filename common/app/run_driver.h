@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/util/progress.h"
@@ -33,6 +34,10 @@ struct DriveOptions {
   double work_per_step = 1;  // cells or elements, for the rate on the progress line
   std::string rate_unit;     // e.g. "Mcell-updates/s"
   bool quiet = false;
+  // A resumed run (checkpoint): outputs_done output times already have their snapshot and the initial snapshot is
+  // not written again.
+  bool resumed = false;
+  std::size_t outputs_done = 0;
 };
 
 struct DriveResult {
@@ -53,17 +58,19 @@ std::string limiting_hint(const Sim& sim) {
   }
 }
 
-// Sim provides stable_dt(), advance(dt), time(), steps(); snapshot() writes one output.
-template <class Sim, class Snapshot>
-DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
+// Sim provides stable_dt(), advance(dt), time(), steps(); snapshot() writes one output; after_step(t_prev) runs
+// after every step (a checkpoint when one is due), before the snapshot of an output time the step reached.
+template <class Sim, class Snapshot, class AfterStep>
+DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot, AfterStep&& after_step) {
   DriveResult r;
   util::Progress progress(!o.quiet);
   double t_last = 0.0, rate = 0.0;
   long steps_last = sim.steps();
   double floor = -1;
   try {
-    snapshot();
-    for (double t_out : o.output_times) {
+    if (!o.resumed) snapshot();
+    for (std::size_t i = o.outputs_done; i < o.output_times.size(); ++i) {
+      const double t_out = o.output_times[i];
       while (sim.time() < t_out * (1.0 - 1e-14) && sim.steps() < o.max_steps) {
         if (interrupted()) throw std::runtime_error("interrupted");
         double dt = sim.stable_dt();
@@ -82,7 +89,9 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
         if (!(dt > 0.0) || !std::isfinite(dt) || dt < o.dt_min)
           throw NumericalError(
               fmt::format("time step collapsed to {:g} s at t = {:.9g} s (step {})", dt, sim.time(), sim.steps()));
+        const double t_prev = sim.time();
         sim.advance(dt);
+        after_step(t_prev);
         const double now = progress.elapsed();
         if (now - t_last > 1.0) {
           rate = static_cast<double>(sim.steps() - steps_last) * o.work_per_step / (now - t_last);
@@ -113,6 +122,11 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
   progress.finish();
   r.wall = progress.elapsed();
   return r;
+}
+
+template <class Sim, class Snapshot>
+DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot) {
+  return drive(sim, o, std::forward<Snapshot>(snapshot), [](double) {});
 }
 
 }  // namespace cosim::app

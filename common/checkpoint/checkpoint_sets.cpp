@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/app/version.h"
 #include "common/io/atomic_file.h"
 
 namespace cosim::checkpoint {
@@ -16,8 +17,7 @@ namespace fs = std::filesystem;
 
 bool CheckpointPolicy::due(long cycle, double t_prev, double t) const {
   if (cycles > 0 && cycle > 0 && cycle % cycles == 0) return true;
-  if (interval > 0 && std::floor(t / interval * (1 + 1e-12)) > std::floor(t_prev / interval * (1 + 1e-12)))
-    return true;
+  if (interval > 0 && std::floor(t / interval * (1 + 1e-12)) > std::floor(t_prev / interval * (1 + 1e-12))) return true;
   return false;
 }
 
@@ -33,6 +33,25 @@ CheckpointPolicy read_checkpoint_policy(config::Node* section) {
 }
 
 fs::path set_path(const fs::path& root, long cycle) { return root / fmt::format("{:09}", cycle); }
+
+fs::path prepare_set(const fs::path& root, long cycle) {
+  const fs::path dir = fs::absolute(set_path(root, cycle));
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot create the checkpoint set: {}", dir.string(), ec.message()));
+  return dir;
+}
+
+nlohmann::json scene_record(const std::string& scene_file, const std::vector<std::string>& overrides) {
+  std::ifstream in(scene_file);
+  nlohmann::json m;
+  m["scene"] = std::string(std::istreambuf_iterator<char>(in), {});
+  m["overrides"] = overrides;
+  m["version"] = app::version();
+  m["git_commit"] = app::git_commit();
+  return m;
+}
 
 void write_manifest(const fs::path& dir, long cycle, double time, nlohmann::json m) {
   if (!m.contains("parts") || !m["parts"].is_array())
@@ -53,9 +72,8 @@ SetInfo read_set(const fs::path& dir) {
   const fs::path file = dir / kManifestName;
   std::ifstream in(file);
   if (!in)
-    throw std::runtime_error(
-        fmt::format("{}: no {}: an incomplete checkpoint set (a process did not confirm its part)", dir.string(),
-                    kManifestName));
+    throw std::runtime_error(fmt::format("{}: no {}: an incomplete checkpoint set (a process did not confirm its part)",
+                                         dir.string(), kManifestName));
   SetInfo s;
   s.dir = dir;
   try {
@@ -71,7 +89,8 @@ SetInfo read_set(const fs::path& dir) {
   for (const auto& part : s.manifest.value("parts", nlohmann::json::array())) {
     std::error_code ec;
     if (!fs::is_regular_file(dir / part.get<std::string>(), ec))
-      throw std::runtime_error(fmt::format("{}: names part {}, which is missing", file.string(), part.get<std::string>()));
+      throw std::runtime_error(
+          fmt::format("{}: names part {}, which is missing", file.string(), part.get<std::string>()));
   }
   return s;
 }
@@ -107,11 +126,11 @@ SetInfo find_set(const fs::path& root, std::optional<long> cycle) {
   const std::vector<SetInfo> sets = complete_sets(root);
   if (sets.empty()) {
     const auto dirs = set_dirs(root);
-    throw std::runtime_error(
-        dirs.empty() ? fmt::format("{}: no checkpoint sets (the run wrote none: coupling.checkpoint or "
-                                   "fluid.checkpoint in the scene turns them on)",
-                                   root.string())
-                     : fmt::format("{}: {} checkpoint set(s), none complete", root.string(), dirs.size()));
+    throw std::runtime_error(dirs.empty()
+                                 ? fmt::format("{}: no checkpoint sets (the run wrote none: coupling.checkpoint or "
+                                               "fluid.checkpoint in the scene turns them on)",
+                                               root.string())
+                                 : fmt::format("{}: {} checkpoint set(s), none complete", root.string(), dirs.size()));
   }
   return sets.back();
 }

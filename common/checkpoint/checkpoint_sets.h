@@ -38,6 +38,13 @@ CheckpointPolicy read_checkpoint_policy(config::Node* section);
 
 std::filesystem::path set_path(const std::filesystem::path& root, long cycle);
 
+// Makes the (empty) directory of set `cycle` under root, absolute: an incomplete set of that cycle, left by a run
+// that stopped while writing it, is removed first. Throws std::runtime_error naming the directory.
+std::filesystem::path prepare_set(const std::filesystem::path& root, long cycle);
+
+// What a manifest records of the scene: its text (the file as read), the --set overrides, the program's version.
+nlohmann::json scene_record(const std::string& scene_file, const std::vector<std::string>& overrides);
+
 struct SetInfo {
   long cycle = 0;
   double time = 0;

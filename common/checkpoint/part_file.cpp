@@ -59,8 +59,8 @@ PartReader::PartReader(fs::path path, std::string_view kind)
     k = h5_.read_string_attribute("/", "kind");
   } catch (const std::exception&) {}
   if (format != kPartFormat)
-    throw std::runtime_error(fmt::format("{}: not a checkpoint part (format '{}', expected '{}')", path_.string(),
-                                         format, kPartFormat));
+    throw std::runtime_error(
+        fmt::format("{}: not a checkpoint part (format '{}', expected '{}')", path_.string(), format, kPartFormat));
   if (k != kind)
     throw std::runtime_error(
         fmt::format("{}: a checkpoint part of the {}, expected one of the {}", path_.string(), k, kind));
@@ -70,9 +70,10 @@ bool PartReader::has(const std::string& name) const { return h5_.exists("/" + na
 
 void PartReader::check_length(const std::string& name, std::size_t got, std::size_t expected) const {
   if (expected != kAny && got != expected)
-    throw std::runtime_error(fmt::format("{}: checkpoint entry '{}' holds {} values, this run needs {} (a checkpoint "
-                                         "of another mesh or scene?)",
-                                         path_.string(), name, got, expected));
+    throw std::runtime_error(
+        fmt::format("{}: checkpoint entry '{}' holds {} values, this run needs {} (a checkpoint "
+                    "of another mesh or scene?)",
+                    path_.string(), name, got, expected));
 }
 
 std::vector<double> PartReader::doubles(const std::string& name, std::size_t expected) const {

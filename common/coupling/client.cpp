@@ -161,9 +161,8 @@ Directive Client::next() {
     d.kind = Directive::Kind::Checkpoint;
     d.directory = e.checkpoint_request().directory();
   } else {
-    m.protocol_failure(
-        fmt::format("expected DtDecision, OutputRequest, CheckpointRequest or Stop after cycle {}, got {}", m.cycle,
-                    body_name(e)));
+    m.protocol_failure(fmt::format(
+        "expected DtDecision, OutputRequest, CheckpointRequest or Stop after cycle {}, got {}", m.cycle, body_name(e)));
   }
   d.cycle = h.cycle();
   d.time = h.time();

@@ -6,7 +6,8 @@
 //     Directive d = c.next();                      // DtDecision, OutputRequest or Stop
 //     if (d.kind == Directive::Kind::Stop) break;
 //     if (d.kind == Directive::Kind::Output) { write snapshot d.output_index; continue; }
-//     if (d.kind == Directive::Kind::Checkpoint) { write the state into d.directory; c.confirm_checkpoint(..); continue; }
+//     if (d.kind == Directive::Kind::Checkpoint) { write the state into d.directory; c.confirm_checkpoint(..);
+//     continue; }
 //     ... solver-specific cycle with one c.propose_dt(stable_dt) (docs/protocol.md "Writing a solver client":
 //     where it goes depends on c.scheme() for the fluid) ...
 //   }

@@ -61,10 +61,10 @@ struct Directive {
   enum class Kind { Advance, Output, Checkpoint, Stop };
   Kind kind = Kind::Stop;
   long cycle = 0;
-  double time = 0;       // t^n [s] (Output: the snapshot time)
-  double dt = 0;         // Advance: the step [s]; 0 in cycle 0 (exchange only, no advance)
-  int output_index = 0;  // Output: snapshot index
-  std::string reason;    // Stop: why
+  double time = 0;        // t^n [s] (Output: the snapshot time)
+  double dt = 0;          // Advance: the step [s]; 0 in cycle 0 (exchange only, no advance)
+  int output_index = 0;   // Output: snapshot index
+  std::string reason;     // Stop: why
   std::string directory;  // Checkpoint: the set directory to write this solver's part into
 };
 

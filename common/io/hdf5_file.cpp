@@ -277,6 +277,21 @@ std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
                                         H5T_NATIVE_INT64);
 }
 
+namespace {
+herr_t collect_dataset(hid_t, const char* name, const H5O_info_t* info, void* out) {
+  if (info->type == H5O_TYPE_DATASET) static_cast<std::vector<std::string>*>(out)->push_back(std::string("/") + name);
+  return 0;
+}
+}  // namespace
+
+std::vector<std::string> Hdf5File::dataset_names() const {
+  std::vector<std::string> out;
+  const Site site(path_, "the datasets");
+  site.check(H5Ovisit2(checked_id("list datasets"), H5_INDEX_NAME, H5_ITER_INC, collect_dataset, &out, H5O_INFO_BASIC),
+             "list");
+  return out;
+}
+
 std::vector<std::uint8_t> Hdf5File::read_bytes(const std::string& name) const {
   return read_dataset_raw<std::uint8_t>(checked_id("read a dataset"), dataset_site(path_, name), name,
                                         H5T_NATIVE_UINT8);

@@ -42,6 +42,7 @@ class Hdf5File {
   void write_dataset(const std::string& name, std::span<const std::uint8_t> data, const Hdf5Shape& shape);
 
   Hdf5Shape dataset_shape(const std::string& name) const;
+  std::vector<std::string> dataset_names() const;  // every dataset in the file, as "/group/name", sorted
   std::vector<double> read_doubles(const std::string& name) const;       // flattened, row-major
   std::vector<std::int64_t> read_int64s(const std::string& name) const;  // flattened, row-major
   std::vector<std::uint8_t> read_bytes(const std::string& name) const;   // flattened, row-major

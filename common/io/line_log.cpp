@@ -28,8 +28,8 @@ LineLog LineLog::resume(std::filesystem::path path, long long size) {
     throw std::runtime_error(fmt::format("{}: {} bytes, shorter than the {} the checkpoint recorded",
                                          log.path_.string(), static_cast<long long>(end), size));
   if (::ftruncate(log.fd_, size) != 0 || ::lseek(log.fd_, size, SEEK_SET) < 0)
-    throw std::runtime_error(fmt::format("{}: cannot cut it back to the checkpoint: {}", log.path_.string(),
-                                         std::strerror(errno)));
+    throw std::runtime_error(
+        fmt::format("{}: cannot cut it back to the checkpoint: {}", log.path_.string(), std::strerror(errno)));
   log.size_ = size;
   return log;
 }

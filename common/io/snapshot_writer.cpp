@@ -321,8 +321,8 @@ void SnapshotSeries::resume(std::vector<std::string> entries) {
   for (std::size_t i = 0; i < entries.size(); ++i) {
     std::error_code ec;
     if (!fs::is_regular_file(dir_ / file_name(i), ec))
-      throw std::runtime_error(fmt::format("{}: snapshot {} of the checkpointed series is missing",
-                                           (dir_ / file_name(i)).string(), i));
+      throw std::runtime_error(
+          fmt::format("{}: snapshot {} of the checkpointed series is missing", (dir_ / file_name(i)).string(), i));
   }
   // Later snapshots of the run that stopped: written again (or, with an earlier end time, not at all).
   std::error_code ec;

@@ -109,7 +109,9 @@ int run_fluid_coupled(const RunOptions& opt) {
   };
   const auto output = [&](const coupling::Directive&) { write_snapshot(series, *sim, boundary->segments_csv()); };
   const auto checkpoint = [&](const coupling::Directive& d) {
-    FluidRunState st{d.cycle, d.time, rec.start_totals,
+    FluidRunState st{d.cycle,
+                     d.time,
+                     rec.start_totals,
                      {{"flow_solver_seconds", solver_seconds}, {"max_step_over_stable", max_step_over_stable}}};
     return write_fluid_part(d.directory, *sim, series, st);
   };

@@ -15,8 +15,8 @@ inline constexpr const char* kFluidPart = "fluid.h5";
 
 // What the runner keeps across a restart besides the solver and the series.
 struct FluidRunState {
-  long cycle = 0;    // coupled cycle (standalone: step) of the set
-  double time = 0;   // [s]
+  long cycle = 0;   // coupled cycle (standalone: step) of the set
+  double time = 0;  // [s]
   nlohmann::json start_totals;
   nlohmann::json counters = nlohmann::json::object();  // the runner's totals so far (solver seconds, ...)
 };

@@ -11,9 +11,11 @@
 #include <cstdlib>
 
 #include "common/app/version.h"
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
+#include "fluid_solver/app/fluid_checkpoint.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/io/fluid_output.h"
 
@@ -116,11 +118,40 @@ int run_fluid(const RunOptions& opt) {
   app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "fluid");
   RunRecord rec;
-  rec.start_totals = totals_json(scene, sim->totals());
   app::DriveOptions drive_opt{
       scene.output_times, scene.t_end, scene.max_steps, 0.0, static_cast<double>(sim->interior_cells()),
       "Mcell-updates/s",  opt.quiet};
-  const app::DriveResult res = app::drive(*sim, drive_opt, [&] { write_snapshot(series, *sim); });
+  if (!opt.restart.empty()) {
+    try {
+      const FluidRunState restored = read_fluid_part(opt.restart, *sim, series);
+      rec.start_totals = restored.start_totals;
+    } catch (const std::exception& e) {
+      spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
+      return 2;
+    }
+    if (sim->time() >= scene.t_end * (1.0 - 1e-14)) {
+      spdlog::error("--restart {}: the checkpoint is at t = {:.9g} s, at or after fluid.time.end = {:g} s",
+                    opt.restart.string(), sim->time(), scene.t_end);
+      return 2;
+    }
+    drive_opt.resumed = true;
+    drive_opt.outputs_done = series.count() > 0 ? series.count() - 1 : 0;  // the first is the initial state
+    spdlog::info("restarted from step {} at t = {:.9g} s ({})", sim->steps(), sim->time(), opt.restart.string());
+  } else {
+    rec.start_totals = totals_json(scene, sim->totals());
+  }
+  // fluid.checkpoint: a set of one part (fluid.h5), complete with its manifest.
+  const auto after_step = [&](double t_prev) {
+    if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
+    const std::filesystem::path dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
+    nlohmann::json m = checkpoint::scene_record(opt.scene_file, opt.overrides);
+    m["parts"] = {
+        write_fluid_part(dir, *sim, series, {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()})};
+    checkpoint::write_manifest(dir, sim->steps(), sim->time(), m);
+    checkpoint::prune(opt.checkpoints, scene.checkpoint.keep);
+  };
+  const app::DriveResult res = app::drive(
+      *sim, drive_opt, [&] { write_snapshot(series, *sim); }, after_step);
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/output_times.h"
 #include "common/eos/materials.h"
 #include "fluid_solver/core/scene_readers.h"
@@ -318,6 +319,15 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     auto out = f.optional_child("output");
     s.output_times = config::read_output_times(out ? &*out : nullptr, s.t_end);
     if (out) out->finish();
+  }
+
+  // checkpoint sets of a fluid-only run (the coupler writes them in a coupled one: coupling.checkpoint)
+  if (auto ck = f.optional_child("checkpoint")) {
+    if (coupled_end > 0)
+      f.fail("checkpoint",
+             "no fluid.checkpoint in a coupled scene (the coupler checkpoints the whole run: put it "
+             "under coupling.checkpoint)");
+    s.checkpoint = checkpoint::read_checkpoint_policy(&*ck);
   }
 
   s.threads = f.get<int>("threads", 0, config::int_at_least(0));

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "common/eos/stiffened_gas.h"
 #include "fluid_solver/physics/granular.h"
@@ -129,8 +130,9 @@ struct FluidScene {
   std::vector<Region> regions;
   Profile profile;
 
-  std::vector<double> output_times;  // sorted, in (0, t_end]
-  int threads = 0;                   // 0: OpenMP default
+  std::vector<double> output_times;         // sorted, in (0, t_end]
+  int threads = 0;                          // 0: OpenMP default
+  checkpoint::CheckpointPolicy checkpoint;  // fluid.checkpoint (fluid-only runs); off unless given
 
   int num_phases() const { return static_cast<int>(phases.size()); }
 };

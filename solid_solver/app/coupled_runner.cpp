@@ -13,8 +13,8 @@
 #include "common/coupling/scene_hash.h"
 #include "common/coupling/solver_loop.h"
 #include "solid_solver/app/run_summary.h"
-#include "solid_solver/app/solid_checkpoint.h"
 #include "solid_solver/app/runner.h"
+#include "solid_solver/app/solid_checkpoint.h"
 #include "solid_solver/coupled/interface_faces.h"
 #include "solid_solver/io/block_history.h"
 #include "solid_solver/io/solid_output.h"
@@ -39,8 +39,8 @@ int run_solid_coupled(const RunOptions& opt) {
       return 2;
     }
   }
-  std::unique_ptr<coupling::Client> client = coupling::connect_solver(opt, coupling::Role::Solid, "solid_solver", {},
-                                                                      restored.cycle, restored.time);
+  std::unique_ptr<coupling::Client> client =
+      coupling::connect_solver(opt, coupling::Role::Solid, "solid_solver", {}, restored.cycle, restored.time);
   if (!client) return 5;
   const InterfaceFaceMap map = make_interface_face_map(sim->boundary_faces());
   spdlog::info("{}: {}D, {} elements, {} interface faces, coupled through {}", scene.name, scene.dim,
@@ -121,8 +121,9 @@ int run_solid_coupled(const RunOptions& opt) {
     history->record(*sim);
   };
   const auto checkpoint = [&](const coupling::Directive& d) {
-    SolidRunState st{d.cycle, d.time, rec.start, last, apply_velocity,
-                     {{"cycles", cycles}, {"solver_seconds", solver_seconds}, {"solid_steps", substeps}}};
+    SolidRunState st{
+        d.cycle, d.time,         rec.start,
+        last,    apply_velocity, {{"cycles", cycles}, {"solver_seconds", solver_seconds}, {"solid_steps", substeps}}};
     return write_solid_part(d.directory, *sim, series, *history, st);
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);

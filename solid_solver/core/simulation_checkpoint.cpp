@@ -60,9 +60,8 @@ void Simulation::save_state(PartWriter& w) const {
 }
 
 void Simulation::restore_state(const PartReader& r) {
-  for_each_array(st_, [&](const char* name, std::vector<double>& v) {
-    v = r.doubles(std::string("solid.") + name, v.size());
-  });
+  for_each_array(
+      st_, [&](const char* name, std::vector<double>& v) { v = r.doubles(std::string("solid.") + name, v.size()); });
   st_.bc_mask = r.bytes("solid.bc_mask", st_.bc_mask.size());
   t_ = r.scalar("solid.time");
   last_dt_ = r.scalar("solid.last_dt");

@@ -1,0 +1,135 @@
+// Whole-run checkpoint and restart (coupling.checkpoint, fluid.checkpoint; cosim run --restart RUN [--from N]):
+// a run resumed from a checkpoint set gives the uninterrupted run's outputs bit for bit (snapshots, XDMF indices,
+// interface and block histories); also after every process was killed with SIGKILL between two sets. A set one of
+// whose parts is missing is never used, and a restart with a changed physics key is refused.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "common/checkpoint/checkpoint_sets.h"
+#include "coupled_test_util.h"
+#include "run_compare.h"
+
+using namespace cosim::test;
+
+namespace {
+
+std::vector<cosim::checkpoint::SetInfo> sets_of(const fs::path& run) {
+  return cosim::checkpoint::complete_sets(run / "checkpoints");
+}
+
+// Runs `scene` to its end with checkpoints (`args`), then resumes a copy of the run from its first complete set and
+// compares the two: the copy's outputs after the set are rewritten by the restarted processes.
+void expect_restart_reproduces(const std::string& name, const std::string& scene, const std::string& args,
+                               int min_snapshots) {
+  const fs::path full = run_dir(name + "_full"), resumed = run_dir(name + "_resumed");
+  ASSERT_EQ(cosim_run(scene_file(scene), full, args), 0) << run_logs(full);
+  const auto sets = sets_of(full);
+  ASSERT_GE(sets.size(), 1u) << "no checkpoint set written";
+  fs::copy(full, resumed, fs::copy_options::recursive);
+  const long from = sets.front().cycle;
+  // The resumed run's later outputs are removed first: what it has at the end it wrote itself.
+  const std::string cmd = bin("cosim").string() + " run " + scene_file(scene).string() + " --restart " +
+                          resumed.string() + " --from " + std::to_string(from) + " --quiet " + args + " > " +
+                          resumed.string() + ".log 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(resumed.string() + ".log") << run_logs(resumed);
+  std::printf("%s: restarted from the set of cycle/step %ld at t = %.6g s (of %zu)\n", name.c_str(), from,
+              sets.front().time, sets.size());
+  expect_same_runs(full, resumed, min_snapshots);
+}
+
+}  // namespace
+
+TEST(Restart, CoupledPistonResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  expect_restart_reproduces("piston", "piston_2d",
+                            "--set coupling.time.end=0.1 --set coupling.checkpoint.interval=0.04", 20);
+}
+
+TEST(Restart, LightPistonResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  // The light piston is a deformable gas block: nodal state, element history and the Robin impedances.
+  expect_restart_reproduces("light_piston", "piston_light_2d",
+                            "--set coupling.time.end=0.02 --set coupling.checkpoint.interval=0.008", 6);
+}
+
+TEST(Restart, TwoPhaseFluidOnlyRunResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  // Air and dispersed tungsten with drag, heat exchange and the granular temperature.
+  expect_restart_reproduces("particle_blast", "particle_blast_2d",
+                            "--set 'fluid.mesh.cells=[48,48]' --set fluid.time.end=2e-4 "
+                            "--set fluid.output.interval=5e-5 --set fluid.checkpoint.cycles=40",
+                            4);
+}
+
+TEST(Restart, AfterEveryProcessIsKilledTheRestartEndsInTheUninterruptedState) {
+  const std::string args = "--set coupling.time.end=0.1 --set coupling.checkpoint.interval=0.02";
+  const fs::path full = run_dir("killed_full"), killed = run_dir("killed");
+  ASSERT_EQ(cosim_run(scene_file("piston_2d"), full, args), 0) << run_logs(full);
+  // The same run, all four processes killed (SIGKILL, as a node failure) once a set is complete.
+  const std::string run = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --out " +
+                          killed.string() + " --quiet " + args + " > " + killed.string() + ".log 2>&1 &";
+  ASSERT_EQ(std::system(run.c_str()), 0);
+  bool have_set = false;
+  for (int i = 0; i < 600 && !have_set; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    have_set = !sets_of(killed).empty();
+  }
+  ASSERT_TRUE(have_set) << "no checkpoint set within 12 s";
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));  // past the set: later outputs exist
+  // ("[-]-out" matches the processes' "--out", not this command's own shell)
+  const std::string kill = "pkill -9 -f -- '[-]-out " + killed.string() + "'";
+  ASSERT_EQ(std::system(kill.c_str()), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_FALSE(fs::exists(killed / "run_summary.json") &&
+               read_text(killed / "run_summary.json").find("completed") != std::string::npos)
+      << "the run ended before it was killed";
+  const std::string resume = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --restart " +
+                             killed.string() + " --quiet " + args + " > " + killed.string() + ".resume.log 2>&1";
+  ASSERT_EQ(std::system(resume.c_str()), 0) << read_text(killed.string() + ".resume.log") << run_logs(killed);
+  expect_same_runs(full, killed, 10);
+}
+
+TEST(Restart, AnIncompleteSetIsNeverUsed) {
+  const std::string args = "--set coupling.time.end=0.1 --set coupling.checkpoint.interval=0.03";
+  const fs::path dir = run_dir("incomplete");
+  ASSERT_EQ(cosim_run(scene_file("piston_2d"), dir, args), 0) << run_logs(dir);
+  auto sets = sets_of(dir);
+  ASSERT_EQ(sets.size(), 2u);  // keep: 2 (of 3 written)
+  // The newest set loses the solid's part, as if the solid died while writing it.
+  fs::remove(sets.back().dir / "solid.h5");
+  ASSERT_EQ(sets_of(dir).size(), 1u);
+  const std::string base = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --restart " +
+                           dir.string() + " --quiet " + args;
+  // Asked for by number, the incomplete set is refused with the reason.
+  const int rc = std::system(
+      (base + " --from " + std::to_string(sets.back().cycle) + " > " + dir.string() + ".r2.log 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 2);
+  EXPECT_NE(read_text(dir.string() + ".r2.log").find("solid.h5, which is missing"), std::string::npos)
+      << read_text(dir.string() + ".r2.log");
+  // Otherwise the restart takes the newest complete set.
+  EXPECT_EQ(std::system((base + " > " + dir.string() + ".r.log 2>&1").c_str()), 0)
+      << read_text(dir.string() + ".r.log");
+  const std::string log = read_text(dir.string() + ".r.log");
+  EXPECT_NE(log.find("checkpoint of cycle " + std::to_string(sets.front().cycle)), std::string::npos) << log;
+}
+
+TEST(Restart, AChangedPhysicsKeyIsRefusedAndALaterEndTimeAllowed) {
+  const std::string args = "--set coupling.time.end=0.06 --set coupling.checkpoint.interval=0.03";
+  const fs::path dir = run_dir("changed");
+  ASSERT_EQ(cosim_run(scene_file("piston_2d"), dir, args), 0) << run_logs(dir);
+  const std::string base = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --restart " +
+                           dir.string() + " --quiet --set coupling.checkpoint.interval=0.03 ";
+  const int rc = std::system(
+      (base + "--set coupling.time.end=0.06 --set solid.blocks.0.density=50 > " + dir.string() + ".c.log 2>&1")
+          .c_str());
+  const std::string log = read_text(dir.string() + ".c.log");
+  EXPECT_EQ(WEXITSTATUS(rc), 2) << log;
+  EXPECT_NE(log.find("solid.blocks[0].density: was 100.0, now 50"), std::string::npos) << log;
+  // The end time may move: the run goes on from its last set to the new end.
+  ASSERT_EQ(std::system((base + "--set coupling.time.end=0.09 > " + dir.string() + ".e.log 2>&1").c_str()), 0)
+      << read_text(dir.string() + ".e.log") << run_logs(dir);
+  const nlohmann::json s = nlohmann::json::parse(read_text(dir / "coupler" / "coupler_summary.json"));
+  EXPECT_NEAR(s["time"].get<double>(), 0.09, 1e-12);
+  const History h = read_history(dir);
+  ASSERT_GT(h.size(), 10u);
+  for (std::size_t i = 1; i < h.size(); ++i) ASSERT_GT(h.t[i], h.t[i - 1]) << "history line " << i << " repeats a time";
+}
