@@ -31,10 +31,13 @@ def scene_hash(path, overrides=()):
 
 
 class Client:
-    def __init__(self, endpoint, token, role, scene_hash_, program="python", phase_names=(), connect_timeout=30.0):
+    def __init__(self, endpoint, token, role, scene_hash_, program="python", phase_names=(), connect_timeout=30.0,
+                 restarted_from=0, restart_time=0.0):
+        """restarted_from, restart_time: the cycle and time of the checkpoint set a restarted solver restored
+        (docs/protocol.md, "Checkpoints"); the first DtDecision is then that of cycle restarted_from + 1."""
         self.endpoint, self.token, self.role = endpoint, token, ROLES[role]
         self.role_name = role
-        self.cycle, self.time = -1, 0.0
+        self.cycle, self.time = (restarted_from, restart_time) if restarted_from > 0 else (-1, 0.0)
         self.ctx = zmq.Context()
         self.sock = self.ctx.socket(zmq.DEALER)
         self.sock.setsockopt(zmq.LINGER, 500)
@@ -49,6 +52,7 @@ class Client:
         e.hello.program = program
         e.hello.pid = os.getpid()
         e.hello.phase_names.extend(phase_names)
+        e.hello.restarted_from = restarted_from
         self.sock.send(e.SerializeToString())
         w = self._receive("Welcome", connect_timeout)
         if w.WhichOneof("body") != "welcome":
@@ -142,7 +146,8 @@ class Client:
 
     # --- API (same order of calls as the C++ client) ---------------------------------------------------
     def next(self):
-        """Returns ('advance', dt) | ('output', index) | ('stop', reason); raises on a failure Stop."""
+        """Returns ('advance', dt) | ('output', index) | ('checkpoint', directory) | ('stop', reason); raises on a
+        failure Stop. After ('checkpoint', d): write the state into d as one file, then confirm_checkpoint."""
         e = self._receive("DtDecision, OutputRequest or Stop")
         self._last_return = time.monotonic()
         kind = e.WhichOneof("body")
@@ -158,7 +163,17 @@ class Client:
         if kind == "output_request":
             self.output_time = e.header.time
             return "output", e.output_request.index
-        self._fail("expected DtDecision, OutputRequest or Stop, got %s" % kind)
+        if kind == "checkpoint_request":
+            if e.header.cycle != self.cycle:
+                self._fail("CheckpointRequest for cycle %d, expected %d" % (e.header.cycle, self.cycle))
+            return "checkpoint", e.checkpoint_request.directory
+        self._fail("expected DtDecision, OutputRequest, CheckpointRequest or Stop, got %s" % kind)
+
+    def confirm_checkpoint(self, part, size):
+        """This solver's part (a file name in the set directory, `size` bytes) is written."""
+        e = self._envelope()
+        e.checkpoint_written.part, e.checkpoint_written.bytes = part, size
+        self._send(e)
 
     def send_faces(self, faces):
         """faces: dict with dim, centre, normal, area, velocity, normal_stress, impedance (flat lists), and

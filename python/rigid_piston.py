@@ -2,7 +2,7 @@
 """A rigid-piston solid in Python speaking the cosim coupling protocol (a swappable replacement of solid_solver).
 
     rigid_piston.py SCENE --out DIR --coupler ENDPOINT --token T [--set k=v ...]
-                    [--mass KG] [--area M2] [--left X] [--right X] [--v0 M/S] [--dim 1|2|3]
+                    [--mass KG] [--area M2] [--left X] [--right X] [--v0 M/S] [--dim 1|2|3] [--restart SET]
 
 The closed boundary of a rigid slab [left, right] x (transverse box) moving along x: 4 segments (2D) or 6 quads
 (3D) with their vertices, so a real fluid_solver can embed it. Newton's law under the interface pressures of
@@ -12,15 +12,20 @@ pressure on a face is p + Z (v' n_x - v_sent n_x) at the new velocity, taken imp
 (docs/methods.md §4.4): (m + theta dt K) v' = m v + dt (F + b - (1 - theta) K v), K = sum Z A n_x^2,
 b = sum Z A n_x v_sent n_x, theta = max(1/2, 1 - m / (dt K)). Defaults come from the scene's solid: section when it describes a box mesh with a
 rigid block named "piston" (solid_solver format), else from the flags (--area: 2D height x 1 m).
-Writes DIR/piston.csv (t, x, v, F) at every OutputRequest.
+Writes DIR/piston.csv (t, x, v, F) at every OutputRequest; at a CheckpointRequest its state as SET/solid.json,
+which --restart SET resumes from.
 """
 import argparse
+import json
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cosim_client import Client, CouplingError, scene_hash  # noqa: E402
+
+
+PART = "solid.json"  # this solver's part of a checkpoint set
 
 
 def defaults_from_scene(path):
@@ -90,6 +95,7 @@ def main():
     ap.add_argument("--v0", type=float, default=0.0)
     ap.add_argument("--dim", type=int, default=2, choices=(1, 2, 3))
     ap.add_argument("--dt", type=float, default=1.0, help="largest step proposed [s]")
+    ap.add_argument("--restart", help="resume from this checkpoint set (its solid.json)")
     a = ap.parse_args()
     d = defaults_from_scene(a.scene) or (1.0, 1.0, -0.5, 0.5, [0.0] * (a.dim - 1), [1.0] * (a.dim - 1))
     m, area = a.mass or d[0], a.area or d[1]
@@ -108,11 +114,27 @@ def main():
     z = [0.0] * len(areas)  # the fluid's impedance per face (mode robin) [Pa s/m]
     v_sent = 0.0
     os.makedirs(a.out, exist_ok=True)
-    out = open(os.path.join(a.out, "piston.csv"), "w")
-    out.write("time,x,v,force\n")
+    csv_path = os.path.join(a.out, "piston.csv")
     tag = "[rigid_piston] "
+    cycle, t0 = 0, 0.0
+    if a.restart:  # the state of the set's cycle; piston.csv cut back to where it was then
+        try:
+            with open(os.path.join(a.restart, PART)) as f:
+                ck = json.load(f)
+        except (OSError, ValueError) as e:
+            print(tag + "error: --restart %s: %s" % (a.restart, e), file=sys.stderr)
+            return 2
+        cycle, t0 = ck["cycle"], ck["time"]
+        x, v, force, p, z, v_sent = ck["x"], ck["v"], ck["force"], ck["p"], ck["z"], ck["v_sent"]
+        out = open(csv_path, "r+")
+        out.truncate(ck["csv_bytes"])
+        out.seek(ck["csv_bytes"])
+    else:
+        out = open(csv_path, "w")
+        out.write("time,x,v,force\n")
     try:
-        c = Client(a.coupler, a.token, "solid", scene_hash(a.scene, a.set), program="rigid_piston.py")
+        c = Client(a.coupler, a.token, "solid", scene_hash(a.scene, a.set), program="rigid_piston.py",
+                   restarted_from=cycle, restart_time=t0)
     except CouplingError as e:
         print(tag + "error: %s" % e, file=sys.stderr)
         return 5
@@ -125,6 +147,18 @@ def main():
             if kind == "output":
                 out.write("%.12g,%.12g,%.12g,%.12g\n" % (c.output_time, x, v, force))
                 out.flush()
+                continue
+            if kind == "checkpoint":  # one file, published whole (floats as repr: exact)
+                out.flush()
+                state = {"cycle": c.cycle, "time": c.time, "x": x, "v": v, "force": force, "p": p, "z": z,
+                         "v_sent": v_sent, "csv_bytes": out.tell()}
+                tmp = os.path.join(value, PART + ".tmp")
+                with open(tmp, "w") as f:
+                    json.dump(state, f)
+                    f.flush()
+                    os.fsync(f.fileno())
+                os.replace(tmp, os.path.join(value, PART))
+                c.confirm_checkpoint(PART, os.path.getsize(os.path.join(value, PART)))
                 continue
             dt = value
             force = sum(-pf * af * nf[0] for pf, af, nf in zip(p, areas, normals))

@@ -46,7 +46,7 @@ int run_fluid_coupled(const RunOptions& opt) {
   FluidRunState restored;
   if (!opt.restart.empty()) {
     try {
-      restored = read_fluid_part(opt.restart, *sim, series);
+      restored = read_fluid_part(opt.restart, *sim, series, boundary.get());
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
       return 2;
@@ -113,7 +113,7 @@ int run_fluid_coupled(const RunOptions& opt) {
                      d.time,
                      rec.start_totals,
                      {{"flow_solver_seconds", solver_seconds}, {"max_step_over_stable", max_step_over_stable}}};
-    return write_fluid_part(d.directory, *sim, series, st);
+    return write_fluid_part(d.directory, *sim, series, st, boundary.get());
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);
   rec.status = res.status;

@@ -6,11 +6,13 @@
 namespace cosim::fluid {
 
 std::string write_fluid_part(const std::filesystem::path& dir, const FluidSimulation& sim,
-                             const io::SnapshotSeries& series, const FluidRunState& run) {
+                             const io::SnapshotSeries& series, const FluidRunState& run,
+                             const coupled::CoupledBoundary* boundary) {
   checkpoint::PartWriter w(dir / kFluidPart, "fluid");
   w.put_integer("cycle", run.cycle);
   w.put_scalar("time", run.time);
   sim.save_state(w);
+  if (boundary) boundary->save(w);
   checkpoint::put_series(w, "fluid", series);
   w.put_text("run.start_totals", run.start_totals.dump());
   w.put_text("run.counters", run.counters.dump());
@@ -18,12 +20,14 @@ std::string write_fluid_part(const std::filesystem::path& dir, const FluidSimula
   return kFluidPart;
 }
 
-FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series) {
+FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series,
+                              coupled::CoupledBoundary* boundary) {
   const checkpoint::PartReader r(set / kFluidPart, "fluid");
   FluidRunState run;
   run.cycle = r.integer("cycle");
   run.time = r.scalar("time");
   sim.restore_state(r);
+  if (boundary) boundary->restore(r);
   checkpoint::resume_series(r, "fluid", series);
   run.start_totals = nlohmann::json::parse(r.text("run.start_totals"));
   run.counters = nlohmann::json::parse(r.text("run.counters"));

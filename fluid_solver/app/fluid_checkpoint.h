@@ -8,6 +8,7 @@
 
 #include "common/io/snapshot_writer.h"
 #include "fluid_solver/core/simulation.h"
+#include "fluid_solver/coupled/coupled_boundary.h"
 
 namespace cosim::fluid {
 
@@ -22,11 +23,14 @@ struct FluidRunState {
 };
 
 // Writes DIR/fluid.h5 (published whole); returns its file name. Throws std::runtime_error naming the file.
+// A coupled run passes its boundary (the embedded boundary of the set's cycle is restored with the solver).
 std::string write_fluid_part(const std::filesystem::path& dir, const FluidSimulation& sim,
-                             const io::SnapshotSeries& series, const FluidRunState& run);
+                             const io::SnapshotSeries& series, const FluidRunState& run,
+                             const coupled::CoupledBoundary* boundary = nullptr);
 
 // Restores the solver and continues `series` from SET/fluid.h5. Throws std::runtime_error naming the file and the
 // entry when the part is missing or does not fit this scene.
-FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series);
+FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series,
+                              coupled::CoupledBoundary* boundary = nullptr);
 
 }  // namespace cosim::fluid

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "common/coupling/wire.h"
 #include "fluid_solver/core/embedded_bodies.h"
 #include "fluid_solver/embedded/geometry.h"
 #include "fluid_solver/interface/interface_samples.h"
@@ -33,17 +34,51 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   }
 
   coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    surface_ = surface_from_faces(faces, DIM, dt);
-    embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
-    geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    build(faces, dt);
     interface::SampleOptions so;
     so.extrapolate_velocity = wall_velocity_;
     samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces, so);
     return samples_;
   }
 
+  // The cycle's faces, samples and states, as protocol messages: enough to set the same embedded boundary again.
+  void save(checkpoint::PartWriter& w) const override {
+    coupling::pb::InterfaceFaces f;
+    coupling::to_pb(faces_, f);
+    coupling::pb::FluidSamples m;
+    coupling::to_pb(samples_, m);
+    coupling::pb::InterfaceStates st;
+    coupling::to_pb(states_, st);
+    w.put_text("boundary.faces", f.SerializeAsString());
+    w.put_text("boundary.samples", m.SerializeAsString());
+    w.put_text("boundary.states", st.SerializeAsString());
+    w.put_scalar("boundary.dt", dt_);
+  }
+
+  void restore(const checkpoint::PartReader& r) override {
+    coupling::pb::InterfaceFaces f;
+    coupling::pb::FluidSamples m;
+    coupling::pb::InterfaceStates st;
+    if (!f.ParseFromString(r.text("boundary.faces")) || !m.ParseFromString(r.text("boundary.samples")) ||
+        !st.ParseFromString(r.text("boundary.states")))
+      throw std::runtime_error(r.path().string() + ": the embedded boundary's messages cannot be read");
+    build(coupling::from_pb(f), r.scalar("boundary.dt"));
+    samples_ = coupling::from_pb(m);
+    apply_states(coupling::from_pb(st));
+  }
+
+  // The embedded geometry of the faces at t^{n+1}, placed back at t^n.
+  void build(const coupling::Faces& faces, double dt) {
+    faces_ = faces;
+    dt_ = dt;
+    const auto t0 = std::chrono::steady_clock::now();
+    surface_ = surface_from_faces(faces, DIM, dt);
+    embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
+    geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
   void apply_states(const coupling::InterfaceStates& st) override {
+    states_ = st;
     const int np = samples_.phases;
     if (st.count != samples_.count)
       throw std::invalid_argument(
@@ -93,6 +128,9 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   embedded::EmbeddedGeometry<DIM> geo_;
   InterfaceSurface surface_;
   coupling::FluidSamples samples_;
+  coupling::Faces faces_;  // of this cycle, with its step and states: what a checkpoint keeps
+  coupling::InterfaceStates states_;
+  double dt_ = 0;
   std::vector<double> face_speed_, surface_speed_, surface_pressure_;
   double geometry_seconds_ = 0;
 };

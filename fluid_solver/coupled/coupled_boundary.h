@@ -23,6 +23,10 @@ class CoupledBoundary {
   // the fluid has two) -> the solver's embedded state for the coming step.
   virtual void apply_states(const coupling::InterfaceStates& states) = 0;
   virtual std::string segments_csv() const = 0;
+  // Checkpoints: this cycle's faces, samples and states; restore() sets the same embedded boundary in the solver
+  // again (the next cycle's time-step proposal is taken with it, before that cycle's states arrive).
+  virtual void save(checkpoint::PartWriter& w) const = 0;
+  virtual void restore(const checkpoint::PartReader& r) = 0;
   virtual double geometry_seconds() const = 0;  // total spent in the geometry [s]
   // The samples' normal velocity extrapolated to the wall like the pressure (coupling.mode robin, whose
   // solid weighs u_f - u_s by the fluid's impedance; interface_samples.h). Off: the sample point's value.

@@ -52,6 +52,23 @@ TEST(Restart, LightPistonResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
                             "--set coupling.time.end=0.02 --set coupling.checkpoint.interval=0.008", 6);
 }
 
+TEST(Restart, SteelPanelWithPlasticityResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  // Paper 9.4: deviatoric stresses, plastic strain and work, clamped edges, the ghost-fluid boundary deforming. The
+  // set at 0.2 ms is taken while the panel yields (plastic work from 0.13 ms on).
+  expect_restart_reproduces("shock_panel", "shock_panel_2d",
+                            "--set coupling.time.end=4e-4 --set coupling.output.interval=5e-5 "
+                            "--set coupling.checkpoint.interval=2e-4",
+                            12);
+}
+
+TEST(Restart, ThePythonPistonCheckpointsAndResumesThroughTheProtocolAlone) {
+  // An outside solver (python/rigid_piston.py) in place of solid_solver: its own part, solid.json.
+  const std::string exe = "/usr/bin/python3 " + (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string();
+  expect_restart_reproduces(
+      "python_piston", "piston_2d",
+      "--solid-exe '" + exe + "' --set coupling.time.end=0.06 --set coupling.checkpoint.interval=0.025", 7);
+}
+
 TEST(Restart, TwoPhaseFluidOnlyRunResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
   // Air and dispersed tungsten with drag, heat exchange and the granular temperature.
   expect_restart_reproduces("particle_blast", "particle_blast_2d",
