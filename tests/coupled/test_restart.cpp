@@ -61,6 +61,15 @@ TEST(Restart, SteelPanelWithPlasticityResumedFromACheckpointIsTheUninterruptedRu
                             12);
 }
 
+TEST(Restart, TungstenBlast3DResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  // Paper 9.6 at a small size: 3D embedded boundary of a deforming hex target, two phases with a granular temperature.
+  expect_restart_reproduces("tungsten", "tungsten_blast_3d",
+                            "--set 'fluid.mesh.cells=[24,24,24]' --set 'solid.mesh.cells=[2,6,6]' "
+                            "--set coupling.time.end=1.2e-4 --set coupling.output.interval=3e-5 "
+                            "--set coupling.checkpoint.interval=6e-5",
+                            8);
+}
+
 TEST(Restart, ThePythonPistonCheckpointsAndResumesThroughTheProtocolAlone) {
   // An outside solver (python/rigid_piston.py) in place of solid_solver: its own part, solid.json.
   const std::string exe = "/usr/bin/python3 " + (fs::path(COSIM_BINARY_DIR) / "python" / "rigid_piston.py").string();
