@@ -108,9 +108,16 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
   Role known = Role::Coupler;  // Coupler: not a connected peer's data connection
   for (Role r : kRoles)
     if (peer(r).connected && peer(r).id == id) known = r;
+  // A stranger's message: answered and logged within the flood limit, else dropped (StrangerLimit).
+  bool log_stranger = false;
+  const auto admit_stranger = [&] {
+    if (const std::string line = strangers_.summary(now_s()); !line.empty()) spdlog::warn("{}", line);
+    return strangers_.admit(now_s(), log_stranger);
+  };
   const auto fail_or_ignore = [&](const std::string& why) {
     if (known != Role::Coupler) fail_peer(known, "sent a " + why);
-    spdlog::warn("ignored a message from an unknown connection: {}", why);
+    if (!admit_stranger()) return false;
+    if (log_stranger) spdlog::warn("ignored a message from an unknown connection: {}", why);
     reply_error(id, why);
     return false;
   };
@@ -140,14 +147,16 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     welcome->set_mode(coupling::to_pb(opt_.mode));
     welcome->set_scheme(coupling::to_pb(opt_.scheme));
     if (!reason.empty()) {
+      const bool own = !handshake_done_ && h.token() == opt_.token;  // the run's own solver, misconfigured
+      if (!own && !admit_stranger()) return false;
       sock_.send({id, coupling::encode(w)}, 500);
       const std::string who = e->hello().program().empty() ? "a peer" : e->hello().program();
       const std::string msg = fmt::format("refused {} (pid {}): {}", who, e->hello().pid(), reason);
       // A Hello without this run's token is a stranger's (the launcher gives the run's own solvers the token):
       // refused and logged, the run goes on. One of the run's own solvers refused (its version, its scene) ends
       // the start-up, and any Hello once the run is going is refused.
-      if (!handshake_done_ && h.token() == opt_.token) throw coupling::Refused(msg);
-      spdlog::warn("{}; the run goes on", msg);
+      if (own) throw coupling::Refused(msg);
+      if (log_stranger) spdlog::warn("{}; the run goes on", msg);
       return false;
     }
     Peer& p = peer(coupling::from_pb(e->hello().role()));

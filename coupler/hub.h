@@ -10,6 +10,7 @@
 
 #include "common/coupling/types.h"
 #include "common/coupling/zmq_socket.h"
+#include "coupler/stranger_limit.h"
 #include "coupler/transcript.h"
 #include "proto/coupling.pb.h"
 
@@ -99,6 +100,7 @@ class Hub {
   std::array<std::deque<coupling::pb::Envelope>, 2> inbox_;  // received, not yet expected
   double next_beat_ = 0, wait_ = 0;
   bool handshake_done_ = false;
+  StrangerLimit strangers_;
   long cycle_ = 0;
   double time_ = 0;
 };
