@@ -269,6 +269,7 @@ RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem
   RunSummary s;
   try {
     std::optional<checkpoint::PartReader> resume;
+    if (ck.restart.empty() && !ck.root.empty()) checkpoint::clear(ck.root);  // an earlier run's sets
     if (!ck.restart.empty()) {
       try {
         resume.emplace(ck.restart / kCouplerPart, "coupler");

@@ -135,6 +135,13 @@ SetInfo find_set(const fs::path& root, std::optional<long> cycle) {
   return sets.back();
 }
 
+void clear(const fs::path& root) {
+  for (const auto& [cycle, dir] : set_dirs(root)) {
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+  }
+}
+
 void prune(const fs::path& root, int keep) {
   const auto dirs = set_dirs(root);
   std::vector<long> complete;

@@ -66,6 +66,10 @@ SetInfo find_set(const std::filesystem::path& root, std::optional<long> cycle = 
 // Reads and checks one set's manifest (std::runtime_error naming the file when it is not a complete set).
 SetInfo read_set(const std::filesystem::path& dir);
 
+// Removes every set under root (the numbered directories only): a fresh run into a directory starts with none, so
+// that no set of an earlier run is kept as newer than its own or restarted from later.
+void clear(const std::filesystem::path& root);
+
 // Keeps the newest `keep` complete sets and removes the older ones and every incomplete set older than the newest
 // complete one (best effort: errors are ignored, a restart only ever uses complete sets).
 void prune(const std::filesystem::path& root, int keep);

@@ -139,6 +139,7 @@ int run_fluid(const RunOptions& opt) {
     spdlog::info("restarted from step {} at t = {:.9g} s ({})", sim->steps(), sim->time(), opt.restart.string());
   } else {
     rec.start_totals = totals_json(scene, sim->totals());
+    if (!opt.checkpoints.empty()) checkpoint::clear(opt.checkpoints);  // an earlier run's sets
   }
   // fluid.checkpoint: a set of one part (fluid.h5), complete with its manifest.
   const auto after_step = [&](double t_prev) {

@@ -123,6 +123,11 @@ TEST(CheckpointSets, PruneKeepsTheNewestCompleteSetsAndDropsOlderIncompleteOnes)
   EXPECT_TRUE(fs::exists(set_path(root, 3)));
   EXPECT_TRUE(fs::exists(set_path(root, 4)));
   EXPECT_TRUE(fs::exists(set_path(root, 5)));
+  std::ofstream(root / "notes.txt") << "the user's";
+  clear(root);
+  EXPECT_TRUE(complete_sets(root).empty());
+  EXPECT_FALSE(fs::exists(set_path(root, 5)));
+  EXPECT_TRUE(fs::exists(root / "notes.txt")) << "clear removes the sets only";
 }
 
 TEST(CheckpointPolicy, DueWhenTheIntervalIsCrossedOrTheCycleCountReached) {

@@ -159,3 +159,21 @@ TEST(Restart, AChangedPhysicsKeyIsRefusedAndALaterEndTimeAllowed) {
   ASSERT_GT(h.size(), 10u);
   for (std::size_t i = 1; i < h.size(); ++i) ASSERT_GT(h.t[i], h.t[i - 1]) << "history line " << i << " repeats a time";
 }
+
+TEST(Restart, AFreshRunIntoTheSameDirectoryStartsWithoutTheEarlierRunsSets) {
+  const fs::path dir = run_dir("fresh_again");
+  ASSERT_EQ(
+      cosim_run(scene_file("piston_2d"), dir, "--set coupling.time.end=0.1 --set coupling.checkpoint.interval=0.03"), 0)
+      << run_logs(dir);
+  ASSERT_EQ(sets_of(dir).size(), 2u);
+  const double newest_before = sets_of(dir).back().time;
+  // A shorter run: its one set must not sit behind the earlier run's later ones.
+  ASSERT_EQ(
+      cosim_run(scene_file("piston_2d"), dir, "--set coupling.time.end=0.05 --set coupling.checkpoint.interval=0.03"),
+      0)
+      << run_logs(dir);
+  const auto sets = sets_of(dir);
+  ASSERT_EQ(sets.size(), 1u);
+  EXPECT_NEAR(sets[0].time, 0.03, 1e-3);
+  EXPECT_GT(newest_before, 0.08);
+}
