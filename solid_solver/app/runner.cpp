@@ -113,6 +113,13 @@ int run_solid(const RunOptions& opt) {
     return 0;
   }
   if (opt.coupled()) return run_solid_coupled(opt);
+  if (!opt.restart.empty()) {
+    spdlog::error(
+        "--restart {}: a standalone solid run has no checkpoints (they are written in coupled runs: "
+        "coupling.checkpoint)",
+        opt.restart.string());
+    return 2;
+  }
   SolidRun run = prepare_solid_run(opt);
   if (!run.sim) return run.exit_code;
   const SolidScene& scene = run.scene;
