@@ -17,6 +17,7 @@
 #include "common/app/run_driver.h"
 #include "common/app/run_options.h"
 #include "common/app/version.h"
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/part_file.h"
 #include "common/config/config.h"
 #include "common/coupling/errors.h"
@@ -98,9 +99,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (check) {  // the plan line cosim check prints
-    std::cout << fmt::format("coupler: {} interface conditions, {} cycle, end time {:g} s, {} output time(s)\n",
+    std::cout << fmt::format("coupler: {} interface conditions, {} cycle, end time {:g} s, {} output time(s), {}\n",
                              coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.t_end,
-                             cfg.output_times.size());
+                             cfg.output_times.size(), checkpoint::describe(cfg.checkpoint));
     return 0;
   }
   if (endpoint.empty()) {

@@ -21,6 +21,14 @@ bool CheckpointPolicy::due(long cycle, double t_prev, double t) const {
   return false;
 }
 
+std::string describe(const CheckpointPolicy& p) {
+  if (!p.enabled()) return "no checkpoints";
+  std::string every;
+  if (p.interval > 0) every = fmt::format("{:g} s", p.interval);
+  if (p.cycles > 0) every += fmt::format("{}{} cycles", every.empty() ? "" : " and every ", p.cycles);
+  return fmt::format("checkpoints every {}, newest {} kept", every, p.keep);
+}
+
 CheckpointPolicy read_checkpoint_policy(config::Node* section) {
   CheckpointPolicy p;
   if (!section) return p;

@@ -33,6 +33,9 @@ struct CheckpointPolicy {
   bool due(long cycle, double t_prev, double t) const;
 };
 
+// "checkpoints every 0.001 s, keep 2" / "no checkpoints", for the plan cosim check prints.
+std::string describe(const CheckpointPolicy& p);
+
 // Reads interval, cycles and keep from `section` (null: checkpoints off) and finishes it.
 CheckpointPolicy read_checkpoint_policy(config::Node* section);
 

@@ -93,10 +93,11 @@ int run_fluid(const RunOptions& opt) {
     for (const auto& ph : s->phases) names += (names.empty() ? "" : ", ") + ph.name;
     // The plan line cosim check prints.
     std::cout << fmt::format(
-        "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}\n", s->dim, shape, cells,
+        "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}{}\n", s->dim, shape, cells,
         s->num_phases(), names, s->exchange.dispersed ? ", the second dispersed" : "", to_string(s->flux),
         util::format_bytes(static_cast<double>(estimated_state_bytes(*s))),
-        s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()));
+        s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()),
+        s->checkpoint.enabled() ? ", " + checkpoint::describe(s->checkpoint) : "");
     return 0;
   }
   if (opt.coupled()) return run_fluid_coupled(opt);

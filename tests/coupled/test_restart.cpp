@@ -177,3 +177,19 @@ TEST(Restart, AFreshRunIntoTheSameDirectoryStartsWithoutTheEarlierRunsSets) {
   EXPECT_NEAR(sets[0].time, 0.03, 1e-3);
   EXPECT_GT(newest_before, 0.08);
 }
+
+TEST(Restart, CosimCheckStatesTheCheckpointPlan) {
+  const fs::path out = run_dir("check_plan");
+  fs::create_directories(out);
+  const std::string cmd = bin("cosim").string() + " check " + scene_file("piston_2d").string() +
+                          " --set coupling.checkpoint.interval=0.05 > " + (out / "plan.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(out / "plan.txt");
+  EXPECT_NE(read_text(out / "plan.txt").find("checkpoints every 0.05 s, newest 2 kept"), std::string::npos)
+      << read_text(out / "plan.txt");
+  // keep without a frequency says what is missing.
+  const std::string bad = bin("cosim").string() + " check " + scene_file("piston_2d").string() +
+                          " --set coupling.checkpoint.keep=3 > " + (out / "bad.txt").string() + " 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
+  EXPECT_NE(read_text(out / "bad.txt").find("interval [s] > 0 or cycles > 0"), std::string::npos)
+      << read_text(out / "bad.txt");
+}
