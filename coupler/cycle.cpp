@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
-#include <optional>
 
 #include "common/app/run_driver.h"
 #include "common/checkpoint/checkpoint_sets.h"
@@ -42,9 +41,8 @@ double choose_dt(double proposal_min, double dt_max, double t, double t_next_out
 namespace {
 
 struct Loop {
-  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir, const CheckpointContext& k,
-       const checkpoint::PartReader* resume)
-      : cfg(c), hub(h), ck(k), history(dir, resume), predictor(c.mode == coupling::Mode::Robin) {}
+  Loop(const CouplerConfig& c, Hub& h, const std::filesystem::path& dir, const CheckpointContext& k)
+      : cfg(c), hub(h), ck(k), history(dir, k.restart), predictor(c.mode == coupling::Mode::Robin) {}
   const CouplerConfig& cfg;
   Hub& hub;
   const CheckpointContext& ck;
@@ -178,8 +176,8 @@ struct Loop {
       throw coupling::CouplingError(
           fmt::format("--restart {}: the checkpoint is at t = {:.9g} s, at or after the "
                       "scene's end time coupling.time.end = {:g} s",
-                      ck.restart.string(), s.time, cfg.t_end));
-    spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", s.cycle - 1, s.time, ck.restart.string());
+                      r.path().parent_path().string(), s.time, cfg.t_end));
+    spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", s.cycle - 1, s.time, r.path().parent_path().string());
     return s;
   }
 
@@ -216,7 +214,8 @@ struct Loop {
     spdlog::info("checkpoint of cycle {} at t = {:.9g} s: {}", n, t, dir.string());
   }
 
-  void run(const checkpoint::PartReader* resume) {
+  void run() {
+    const checkpoint::PartReader* resume = ck.restart;
     hub.handshake();
     const Start start = resume ? restore(*resume) : Start{};
     double t = start.time, dt = 0.0;
@@ -268,16 +267,10 @@ RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem
                        const CheckpointContext& ck) {
   RunSummary s;
   try {
-    std::optional<checkpoint::PartReader> resume;
-    if (ck.restart.empty() && !ck.root.empty()) checkpoint::clear(ck.root);  // an earlier run's sets
-    if (!ck.restart.empty()) {
-      try {
-        resume.emplace(ck.restart / kCouplerPart, "coupler");
-      } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
-    }
-    Loop loop(cfg, hub, out_dir, ck, resume ? &*resume : nullptr);
+    if (!ck.restart && !ck.root.empty()) checkpoint::clear(ck.root);  // an earlier run's sets
+    Loop loop(cfg, hub, out_dir, ck);
     try {
-      loop.run(resume ? &*resume : nullptr);
+      loop.run();
       return loop.sum;
     } catch (...) {
       s = loop.sum;

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 
+#include "common/checkpoint/part_file.h"
 #include "coupler/coupler_config.h"
 #include "coupler/history.h"
 #include "coupler/hub.h"
@@ -25,9 +26,9 @@ struct RunSummary {
 
 // Where the run's checkpoint sets go and what their manifests record; `restart`: the set this run resumes from.
 struct CheckpointContext {
-  std::filesystem::path root;     // the sets' directory (RUN/checkpoints)
-  std::filesystem::path restart;  // empty: a fresh start
-  std::string scene_file;         // the scene as read (its text goes into each manifest), with its overrides
+  std::filesystem::path root;                       // the sets' directory (RUN/checkpoints)
+  const checkpoint::PartReader* restart = nullptr;  // the coupler's part of the set resumed from; null: a fresh start
+  std::string scene_file;  // the scene as read (its text goes into each manifest), with its overrides
   std::vector<std::string> overrides;
   std::string scene_hash;
 };

@@ -83,15 +83,13 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
   if (hello.scene_hash() != opt_.scene_hash)
     return fmt::format("scene hash {} differs from the coupler's {} (different scene file or --set overrides)",
                        hello.scene_hash(), opt_.scene_hash);
-  if (hello.restarted_from() != opt_.restarted_from)
-    return opt_.restarted_from == 0
-               ? fmt::format("restarted from the checkpoint of cycle {}, but the run starts afresh",
-                             hello.restarted_from())
-               : fmt::format("{} the checkpoint of cycle {} (every process must restart from the same set)",
-                             hello.restarted_from() == 0
-                                 ? "starts afresh instead of restarting from"
-                                 : fmt::format("restarted from cycle {}, not from", hello.restarted_from()),
-                             opt_.restarted_from);
+  if (hello.restarted_from() != opt_.restarted_from) {
+    const auto start = [](long cycle) {
+      return cycle == 0 ? std::string("a fresh start") : fmt::format("the checkpoint of cycle {}", cycle);
+    };
+    return fmt::format("it resumes from {}, the run from {} (every process must start from the same set)",
+                       start(hello.restarted_from()), start(opt_.restarted_from));
+  }
   const Role r = coupling::from_pb(hello.role());
   if (peer(r).connected)
     return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "common/app/cli_suggest.h"
 #include "common/app/run_driver.h"
@@ -123,18 +124,19 @@ int main(int argc, char** argv) {
   ho.connect_timeout = cfg.connect_timeout;
   ho.step_timeout = cfg.step_timeout;
   ho.max_message_bytes = cfg.max_message_mb * 1024 * 1024;
-  coupler::CheckpointContext ck{
-      checkpoints.empty() ? std::filesystem::path(out) / "checkpoints" : std::filesystem::path(checkpoints), restart,
-      scene, overrides, ho.scene_hash};
+  std::optional<checkpoint::PartReader> restart_part;
   if (!restart.empty()) {
-    try {  // the cycle both solvers' Hellos must name
-      ho.restarted_from =
-          checkpoint::PartReader(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler").integer("cycle");
+    try {  // its cycle is the one both solvers' Hellos must name
+      restart_part.emplace(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler");
+      ho.restarted_from = restart_part->integer("cycle");
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", restart, e.what());
       return 2;
     }
   }
+  const coupler::CheckpointContext ck{
+      checkpoints.empty() ? std::filesystem::path(out) / "checkpoints" : std::filesystem::path(checkpoints),
+      restart_part ? &*restart_part : nullptr, scene, overrides, ho.scene_hash};
   try {
     coupler::Transcript tr(transcript);
     coupler::Hub hub(ho, transcript.empty() ? nullptr : &tr);

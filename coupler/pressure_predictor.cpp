@@ -36,8 +36,7 @@ void PressurePredictor::apply(coupling::FluidSamples& s, double t, double dt) {
 void PressurePredictor::save(checkpoint::PartWriter& w) const {
   w.put("predictor.pressure", prev_pressure_);
   w.put("predictor.velocity", prev_velocity_);
-  const std::vector<std::uint8_t> wet(prev_wetted_.begin(), prev_wetted_.end());
-  w.put("predictor.wetted", wet);
+  w.put_flags("predictor.wetted", prev_wetted_);
   w.put_scalar("predictor.time", prev_time_);
   w.put_integer("predictor.have", have_prev_ ? 1 : 0);
 }
@@ -45,8 +44,7 @@ void PressurePredictor::save(checkpoint::PartWriter& w) const {
 void PressurePredictor::restore(const checkpoint::PartReader& r) {
   prev_pressure_ = r.doubles("predictor.pressure");
   prev_velocity_ = r.doubles("predictor.velocity");
-  const std::vector<std::uint8_t> wet = r.bytes("predictor.wetted");
-  prev_wetted_.assign(wet.begin(), wet.end());
+  prev_wetted_ = r.flags("predictor.wetted");
   prev_time_ = r.scalar("predictor.time");
   have_prev_ = r.integer("predictor.have") != 0;
 }

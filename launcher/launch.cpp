@@ -204,20 +204,13 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
   }
   return plan;
 }
-}  // namespace
 
-namespace {
 // The checkpoint set a restart resumes from, checked against the scene given now: every key that shapes the
 // physics must be as it was when the set was written. Prints why and gives nothing when the run cannot resume.
 std::optional<fs::path> restart_set_for(const LaunchOptions& opt, const fs::path& root) {
   checkpoint::SetInfo set;
   try {
     set = checkpoint::find_set(root, opt.restart_from >= 0 ? std::optional<long>(opt.restart_from) : std::nullopt);
-  } catch (const std::exception& e) {
-    std::cerr << "cosim: --restart: " << e.what() << "\n";
-    return std::nullopt;
-  }
-  try {
     const config::Node was =
         config::load_string(set.manifest.value("scene", std::string()), (set.dir / "manifest.json").string(),
                             set.manifest.value("overrides", std::vector<std::string>{}));

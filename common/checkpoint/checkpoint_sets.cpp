@@ -61,15 +61,22 @@ nlohmann::json scene_record(const std::string& scene_file, const std::vector<std
   return m;
 }
 
+namespace {
+// The first of `parts` that is not a file in dir, or "".
+std::string missing_part(const fs::path& dir, const nlohmann::json& parts) {
+  for (const auto& part : parts) {
+    std::error_code ec;
+    if (!fs::is_regular_file(dir / part.get<std::string>(), ec)) return part.get<std::string>();
+  }
+  return "";
+}
+}  // namespace
+
 void write_manifest(const fs::path& dir, long cycle, double time, nlohmann::json m) {
   if (!m.contains("parts") || !m["parts"].is_array())
     throw std::invalid_argument("write_manifest: the manifest must list its parts");
-  for (const auto& part : m["parts"]) {
-    std::error_code ec;
-    if (!fs::is_regular_file(dir / part.get<std::string>(), ec))
-      throw std::runtime_error(
-          fmt::format("{}: part {} is missing: the set is not complete", dir.string(), part.get<std::string>()));
-  }
+  if (const std::string part = missing_part(dir, m["parts"]); !part.empty())
+    throw std::runtime_error(fmt::format("{}: part {} is missing: the set is not complete", dir.string(), part));
   m["format"] = kSetFormat;
   m["cycle"] = cycle;
   m["time"] = time;
@@ -94,12 +101,8 @@ SetInfo read_set(const fs::path& dir) {
                                          s.manifest.value("format", std::string("missing"))));
   s.cycle = s.manifest.value("cycle", -1L);
   s.time = s.manifest.value("time", 0.0);
-  for (const auto& part : s.manifest.value("parts", nlohmann::json::array())) {
-    std::error_code ec;
-    if (!fs::is_regular_file(dir / part.get<std::string>(), ec))
-      throw std::runtime_error(
-          fmt::format("{}: names part {}, which is missing", file.string(), part.get<std::string>()));
-  }
+  if (const std::string part = missing_part(dir, s.manifest.value("parts", nlohmann::json::array())); !part.empty())
+    throw std::runtime_error(fmt::format("{}: names part {}, which is missing", file.string(), part));
   return s;
 }
 
@@ -151,16 +154,12 @@ void clear(const fs::path& root) {
 }
 
 void prune(const fs::path& root, int keep) {
-  const auto dirs = set_dirs(root);
-  std::vector<long> complete;
-  for (const auto& [cycle, dir] : dirs) {
-    std::error_code ec;
-    if (fs::is_regular_file(dir / kManifestName, ec)) complete.push_back(cycle);
-  }
+  std::vector<long> complete;  // as a restart counts them: manifest and every part
+  for (const SetInfo& s : complete_sets(root)) complete.push_back(s.cycle);
   if (complete.empty()) return;
   const long newest = complete.back();
   const long oldest_kept = complete[complete.size() > static_cast<std::size_t>(keep) ? complete.size() - keep : 0];
-  for (const auto& [cycle, dir] : dirs) {
+  for (const auto& [cycle, dir] : set_dirs(root)) {
     const bool is_complete = std::binary_search(complete.begin(), complete.end(), cycle);
     if ((is_complete && cycle < oldest_kept) || (!is_complete && cycle < newest)) {
       std::error_code ignored;

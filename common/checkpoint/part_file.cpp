@@ -34,6 +34,9 @@ void PartWriter::put(const std::string& name, std::span<const std::int64_t> v) {
 void PartWriter::put(const std::string& name, std::span<const std::uint8_t> v) {
   h5_.write_dataset("/" + name, v, {v.size()});
 }
+void PartWriter::put_flags(const std::string& name, const std::vector<char>& flags) {
+  put(name, std::vector<std::uint8_t>(flags.begin(), flags.end()));
+}
 void PartWriter::put_text(const std::string& name, std::string_view text) {
   put(name, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
@@ -90,6 +93,10 @@ std::vector<std::uint8_t> PartReader::bytes(const std::string& name, std::size_t
   std::vector<std::uint8_t> v = h5_.read_bytes("/" + name);
   check_length(name, v.size(), expected);
   return v;
+}
+std::vector<char> PartReader::flags(const std::string& name) const {
+  const std::vector<std::uint8_t> b = bytes(name);
+  return std::vector<char>(b.begin(), b.end());
 }
 std::string PartReader::text(const std::string& name) const {
   const std::vector<std::uint8_t> b = bytes(name);

@@ -32,6 +32,7 @@ class PartWriter {
   void put(const std::string& name, std::span<const double> v);
   void put(const std::string& name, std::span<const std::int64_t> v);
   void put(const std::string& name, std::span<const std::uint8_t> v);
+  void put_flags(const std::string& name, const std::vector<char>& flags);  // as bytes (0/1 per entry)
   void put_text(const std::string& name, std::string_view text);
   void put_scalar(const std::string& name, double v);
   void put_integer(const std::string& name, std::int64_t v);
@@ -55,6 +56,7 @@ class PartReader {
   std::vector<double> doubles(const std::string& name, std::size_t expected = kAny) const;
   std::vector<std::int64_t> integers(const std::string& name, std::size_t expected = kAny) const;
   std::vector<std::uint8_t> bytes(const std::string& name, std::size_t expected = kAny) const;
+  std::vector<char> flags(const std::string& name) const;
   std::string text(const std::string& name) const;
   double scalar(const std::string& name) const;
   std::int64_t integer(const std::string& name) const;

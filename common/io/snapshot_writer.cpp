@@ -325,16 +325,7 @@ void SnapshotSeries::resume(std::vector<std::string> entries) {
           fmt::format("{}: snapshot {} of the checkpointed series is missing", (dir_ / file_name(i)).string(), i));
   }
   // Later snapshots of the run that stopped: written again (or, with an earlier end time, not at all).
-  std::error_code ec;
-  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    const std::string prefix = basename_ + "_";
-    if (name.size() != prefix.size() + 9 || !name.starts_with(prefix) || !name.ends_with(".h5")) continue;
-    const std::string digits = name.substr(prefix.size(), 6);
-    if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::error_code rm;
-    if (std::stoul(digits) >= entries.size()) fs::remove(it->path(), rm);
-  }
+  remove_numbered_files(dir_, basename_ + "_", ".h5", entries.size());
   grids_ = std::move(entries);
   resumed_ = true;
   write_file_atomically(xdmf_path(), xdmf_document(basename_, grids_));
@@ -387,7 +378,8 @@ fs::path SnapshotSeries::publish(const std::string& file_name, std::string grid_
   return h5_path;
 }
 
-std::size_t remove_numbered_files(const fs::path& dir, std::string_view prefix, std::string_view suffix) {
+std::size_t remove_numbered_files(const fs::path& dir, std::string_view prefix, std::string_view suffix,
+                                  std::size_t from) {
   std::size_t removed = 0;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -396,6 +388,7 @@ std::size_t remove_numbered_files(const fs::path& dir, std::string_view prefix, 
       continue;
     const std::string_view digits = std::string_view(name).substr(prefix.size(), 6);
     if (digits.find_first_not_of("0123456789") != std::string_view::npos) continue;
+    if (std::stoul(std::string(digits)) < from) continue;
     std::error_code rm;
     if (it->is_regular_file(rm) && fs::remove(it->path(), rm)) ++removed;
   }

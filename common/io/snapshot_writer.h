@@ -111,8 +111,10 @@ class SnapshotSeries {
   bool resumed_ = false;            // continues a checkpointed series: nothing of it is removed
 };
 
-// Removes the regular files <prefix>NNNNNN<suffix> (exactly six digits) from dir: what an earlier run
-// of the same output left there. Returns how many were removed; errors are ignored (best effort).
-std::size_t remove_numbered_files(const std::filesystem::path& dir, std::string_view prefix, std::string_view suffix);
+// Removes the regular files <prefix>NNNNNN<suffix> (exactly six digits) with NNNNNN >= `from` from dir: what an
+// earlier run of the same output left there (or, from a checkpoint's count on, what a stopped run wrote after it).
+// Returns how many were removed; errors are ignored (best effort).
+std::size_t remove_numbered_files(const std::filesystem::path& dir, std::string_view prefix, std::string_view suffix,
+                                  std::size_t from = 0);
 
 }  // namespace cosim::io

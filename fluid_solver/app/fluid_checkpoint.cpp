@@ -29,6 +29,8 @@ FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation&
   sim.restore_state(r);
   if (boundary) boundary->restore(r);
   checkpoint::resume_series(r, "fluid", series);
+  // and the interface segments that go with the removed snapshots (fluid_output.h)
+  io::remove_numbered_files(series.xdmf_path().parent_path(), "fluid_interface_", ".csv", series.count());
   run.start_totals = nlohmann::json::parse(r.text("run.start_totals"));
   run.counters = nlohmann::json::parse(r.text("run.counters"));
   return run;

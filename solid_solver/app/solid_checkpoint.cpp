@@ -18,8 +18,7 @@ std::string write_solid_part(const std::filesystem::path& dir, const Simulation&
   w.put("run.last.face_pressure", run.last.face_pressure);
   w.put("run.last.face_impedance", run.last.face_impedance);
   w.put("run.last.face_normal_velocity", run.last.face_normal_velocity);
-  const std::vector<std::uint8_t> wetted(run.last.face_wetted.begin(), run.last.face_wetted.end());
-  w.put("run.last.face_wetted", wetted);
+  w.put_flags("run.last.face_wetted", run.last.face_wetted);
   w.put_integer("run.last.count", run.last.count);
   w.put_integer("run.apply_velocity", run.apply_velocity ? 1 : 0);
   w.put_text("run.counters", run.counters.dump());
@@ -39,8 +38,7 @@ SolidRunState read_solid_part(const checkpoint::PartReader& r, Simulation& sim, 
   run.last.face_pressure = r.doubles("run.last.face_pressure");
   run.last.face_impedance = r.doubles("run.last.face_impedance");
   run.last.face_normal_velocity = r.doubles("run.last.face_normal_velocity");
-  const std::vector<std::uint8_t> wetted = r.bytes("run.last.face_wetted");
-  run.last.face_wetted.assign(wetted.begin(), wetted.end());
+  run.last.face_wetted = r.flags("run.last.face_wetted");
   run.apply_velocity = r.integer("run.apply_velocity") != 0;
   run.counters = nlohmann::json::parse(r.text("run.counters"));
   return run;

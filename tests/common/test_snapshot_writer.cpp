@@ -471,6 +471,11 @@ TEST_F(SnapshotSeriesTest, NewRunRemovesTheEarlierRunsSnapshots) {
   EXPECT_EQ(Hdf5File(dir_ / "run_000000.h5", Hdf5File::Mode::ReadOnly).read_double_attribute("/", "time"),
             std::vector<double>{0.5});
   EXPECT_EQ(cosim::io::remove_numbered_files(dir_, "run_", ".csv"), 1u);
+  // From an index on (what a stopped run wrote after its checkpoint): the earlier ones stay.
+  for (const char* f : {"seg_000001.csv", "seg_000002.csv", "seg_000005.csv"}) std::ofstream(dir_ / f) << "x";
+  EXPECT_EQ(cosim::io::remove_numbered_files(dir_, "seg_", ".csv", 2), 2u);
+  EXPECT_TRUE(fs::exists(dir_ / "seg_000001.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "seg_000002.csv"));
 }
 
 TEST_F(SnapshotSeriesTest, MissingDirectoryThrowsWithPath) {
