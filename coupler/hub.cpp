@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "common/app/run_driver.h"
@@ -90,6 +91,15 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
     return fmt::format("it resumes from {}, the run from {} (every process must start from the same set)",
                        start(hello.restarted_from()), start(opt_.restarted_from));
   }
+  if (hello.phase_min_pressure_size() != 0) {
+    if (hello.phase_min_pressure_size() != hello.phase_names_size())
+      return fmt::format("Hello.phase_min_pressure: {} values for {} phase_names, expected one per phase",
+                         hello.phase_min_pressure_size(), hello.phase_names_size());
+    for (int k = 0; k < hello.phase_min_pressure_size(); ++k)
+      if (!std::isfinite(hello.phase_min_pressure(k)))
+        return fmt::format("Hello.phase_min_pressure[{}]: {}, expected a finite pressure [Pa]", k,
+                           hello.phase_min_pressure(k));
+  }
   const Role r = coupling::from_pb(hello.role());
   if (peer(r).connected)
     return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));
@@ -163,6 +173,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     p.program = e->hello().program();
     p.pid = e->hello().pid();
     p.phase_names.assign(e->hello().phase_names().begin(), e->hello().phase_names().end());
+    p.phase_min_pressure.assign(e->hello().phase_min_pressure().begin(), e->hello().phase_min_pressure().end());
     p.last_seen = now_s();
     p.hello = *e;
     p.welcome = w;
@@ -181,7 +192,9 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
   if (h.token() != opt_.token) fail_peer(known, fmt::format("sent {} with a wrong run token", coupling::body_name(*e)));
   if (e->has_error()) throw PeerLost(fmt::format("{} reported an error: {}", p.describe(known), e->error().reason()));
   if (e->has_stop()) throw PeerLost(fmt::format("{} stopped: {}", p.describe(known), e->stop().reason()));
-  const std::string problem = coupling::validate(*e);
+  std::string problem = coupling::validate(*e);
+  if (problem.empty() && e->has_samples())
+    problem = coupling::validate_sample_pressures(e->samples(), p.phase_min_pressure, p.phase_names);
   if (!problem.empty()) fail_peer(known, "sent an invalid message: " + problem);
   p.busy += std::max(0.0, h.busy_seconds());
   out = {known, std::move(*e)};

@@ -39,6 +39,7 @@ struct Peer {
   std::string program;
   long pid = 0;
   std::vector<std::string> phase_names;
+  std::vector<double> phase_min_pressure;        // [Pa] per phase (fluid, optional)
   double last_seen = 0;                          // steady clock [s]
   double busy = 0;                               // sum of Header.busy_seconds received [s]
   double longest_answer = 0;                     // the longest wait for one of its data messages [s]

@@ -104,6 +104,7 @@ struct Client::Impl {
     hello->set_program(opt.program);
     hello->set_pid(static_cast<long>(::getpid()));
     for (const auto& p : opt.phase_names) hello->add_phase_names(p);
+    for (double p : opt.phase_min_pressure) hello->add_phase_min_pressure(p);
     hello->set_restarted_from(opt.restarted_from);
     data.send({encode(e)}, 5000);
     pb::Envelope w = receive("Welcome", opt.connect_timeout);

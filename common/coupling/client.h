@@ -31,14 +31,15 @@
 namespace cosim::coupling {
 
 struct ClientOptions {
-  std::string endpoint;                  // ipc://... or tcp://host:port of the coupler
-  std::string token;                     // per-run token (launcher: --token)
-  Role role = Role::Fluid;               // Fluid or Solid
-  std::string scene_hash;                // scene_hash(scene file, overrides)
-  std::string program = "solver";        // for the coupler's messages
-  std::vector<std::string> phase_names;  // fluid: its phases in sample order
-  double connect_timeout = 30.0;         // [s] to wait for the Welcome
-  std::uint32_t protocol_version = 0;    // 0: this build's; tests only set another
+  std::string endpoint;                    // ipc://... or tcp://host:port of the coupler
+  std::string token;                       // per-run token (launcher: --token)
+  Role role = Role::Fluid;                 // Fluid or Solid
+  std::string scene_hash;                  // scene_hash(scene file, overrides)
+  std::string program = "solver";          // for the coupler's messages
+  std::vector<std::string> phase_names;    // fluid: its phases in sample order
+  std::vector<double> phase_min_pressure;  // fluid: the lowest pressure each phase's EOS admits [Pa] (optional)
+  double connect_timeout = 30.0;           // [s] to wait for the Welcome
+  std::uint32_t protocol_version = 0;      // 0: this build's; tests only set another
   // Checked while waiting for the coupler (every 0.1 s): true stops the wait with RunStopped (the solvers pass
   // their SIGINT/SIGTERM flag, so a signal ends a solver at once even while the coupler is silent).
   std::function<bool()> should_stop;

@@ -26,16 +26,22 @@ namespace cosim::coupling {
 
 // Connects the solver of a coupled run (opt.coupler, opt.token) to its coupler: handshake with the scene hash
 // of the same file and overrides. Logs and returns null when that fails (the caller exits with 5).
-// A restarted solver passes the cycle and time of the set it restored.
+// A fluid names its phases and the lowest pressure each admits; a restarted solver passes the cycle and time of
+// the set it restored.
+struct SolverPhases {
+  std::vector<std::string> names;
+  std::vector<double> min_pressure;  // [Pa]
+};
 inline std::unique_ptr<Client> connect_solver(const app::RunOptions& opt, Role role, const std::string& program,
-                                              std::vector<std::string> phase_names = {}, long restarted_from = 0,
+                                              SolverPhases phases = {}, long restarted_from = 0,
                                               double restart_time = 0) {
   ClientOptions co;
   co.endpoint = opt.coupler;
   co.token = opt.token;
   co.role = role;
   co.program = program;
-  co.phase_names = std::move(phase_names);
+  co.phase_names = std::move(phases.names);
+  co.phase_min_pressure = std::move(phases.min_pressure);
   co.restarted_from = restarted_from;
   co.restart_time = restart_time;
   co.should_stop = [] { return app::interrupted(); };  // SIGINT/SIGTERM end a wait on a silent coupler at once

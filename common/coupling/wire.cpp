@@ -290,6 +290,25 @@ std::string validate_states(const pb::InterfaceStates& m) {
 
 }  // namespace
 
+std::string validate_sample_pressures(const pb::FluidSamples& m, const std::vector<double>& min_pressure,
+                                      const std::vector<std::string>& phase_names) {
+  const long np = static_cast<long>(m.phases());
+  if (min_pressure.empty() || static_cast<long>(min_pressure.size()) != np) return "";
+  for (long f = 0; f < static_cast<long>(m.count()); ++f) {
+    if (f < m.wetted_size() && !m.wetted(f)) continue;  // no fluid there: nothing sampled
+    for (long k = 0; k < np; ++k) {
+      const long i = f * np + k;
+      if (i < m.pressure_size() && m.pressure(i) < min_pressure[k])
+        return fmt::format(
+            "FluidSamples.pressure[{}]: {} Pa, below the lowest pressure phase '{}' admits ({} Pa, Hello.phase_min_"
+            "pressure) (face {}, phase {})",
+            i, m.pressure(i), k < static_cast<long>(phase_names.size()) ? phase_names[k] : std::to_string(k),
+            min_pressure[k], f, k);
+    }
+  }
+  return "";
+}
+
 std::string validate(const pb::Envelope& e) {
   switch (e.body_case()) {
     case pb::Envelope::kFaces: return validate_faces(e.faces());

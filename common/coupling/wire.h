@@ -33,6 +33,10 @@ std::optional<pb::Envelope> decode(const std::string& bytes, std::string& why);
 // Array sizes and values of a body: empty string when consistent, otherwise "InterfaceFaces.normal: 6 values,
 // expected dim * count = 9". Non-finite values are rejected where the protocol forbids them.
 std::string validate(const pb::Envelope& e);
+// The samples' pressures against the lowest pressure each phase admits (Hello.phase_min_pressure; empty: no
+// check), on wetted faces: "" or the field, face, phase and value.
+std::string validate_sample_pressures(const pb::FluidSamples& m, const std::vector<double>& min_pressure,
+                                      const std::vector<std::string>& phase_names);
 
 void to_pb(const Faces& f, pb::InterfaceFaces& m);
 Faces from_pb(const pb::InterfaceFaces& m);

@@ -3,7 +3,7 @@
 //   cosim_scripted_peer --role fluid|solid --endpoint EP [--token T] [--scene FILE] [--set k=v ...]
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
-//                       [--extra-proposals N] [--hang-after N]
+//                       [--extra-proposals N] [--hang-after N] [--min-pressure P]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
@@ -18,6 +18,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <thread>
 
 #include "common/app/run_options.h"
@@ -47,6 +48,8 @@ int main(int argc, char** argv) {
   app.add_option("--velocity", velocity);
   app.add_option("--impedance", impedance);
   app.add_option("--pressure", pressure);
+  std::optional<double> min_pressure;
+  app.add_option("--min-pressure", min_pressure, "fluid: Hello.phase_min_pressure of every phase [Pa]");
   double gradient = 0.0;
   app.add_option("--pressure-gradient", gradient, "fluid: p = pressure + gradient * x_face [Pa/m]");
   int extra_proposals = 0;
@@ -66,7 +69,11 @@ int main(int argc, char** argv) {
     o.protocol_version = version;
     o.connect_timeout = connect_timeout;
     for (int k = 0; k < phases; ++k) o.phase_names.push_back(fmt::format("phase{}", k));
-    if (o.role == Role::Solid) o.phase_names.clear();
+    if (min_pressure) o.phase_min_pressure.assign(o.phase_names.size(), *min_pressure);
+    if (o.role == Role::Solid) {
+      o.phase_names.clear();
+      o.phase_min_pressure.clear();
+    }
     Client c(o);
     std::cerr << tag << "connected to " << endpoint << "\n";
     double x = 0.0;

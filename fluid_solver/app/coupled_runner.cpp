@@ -57,10 +57,13 @@ int run_fluid_coupled(const RunOptions& opt) {
     spdlog::info("restarted from cycle {} at t = {:.9g} s ({})", restored.cycle, restored.time, opt.restart.string());
   }
 
-  std::vector<std::string> phase_names;
-  for (const auto& ph : scene.phases) phase_names.push_back(ph.name);
-  std::unique_ptr<coupling::Client> client = coupling::connect_solver(
-      opt, coupling::Role::Fluid, "fluid_solver", std::move(phase_names), restored.cycle, restored.time);
+  coupling::SolverPhases phases;
+  for (const auto& ph : scene.phases) {
+    phases.names.push_back(ph.name);
+    phases.min_pressure.push_back(-ph.eos.pinf);  // a stiffened gas admits p + pinf > 0
+  }
+  std::unique_ptr<coupling::Client> client = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver",
+                                                                      std::move(phases), restored.cycle, restored.time);
   if (!client) return 5;
   boundary->sample_wall_velocity(client->mode() == coupling::Mode::Robin);
   spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,

@@ -179,6 +179,23 @@ TEST(CouplingProcesses, MessagesAheadOfTheCycleAreQueuedOrRefused) {
   }
 }
 
+// A fluid that names the lowest pressure its phases admit (an ideal gas: 0 Pa) and then samples -5e5 Pa is stopped
+// on receipt, the field, face and value named; the same pressure from a fluid whose EOS admits it (a stiffened gas
+// with p_inf = 6e8 Pa) runs.
+TEST(CouplingProcesses, ASamplePressureBelowWhatThePhaseAdmitsIsRefused) {
+  ThreeProcs bad("negative_pressure", kShort, {"--min-pressure", "0", "--pressure", "-5e5"});
+  wait_all(bad.cs, 20);
+  EXPECT_EQ(bad.cs[0].exit_code, 5) << bad.log(0);
+  EXPECT_NE(bad.cs[1].exit_code, 0);
+  EXPECT_NE(bad.log(0).find("FluidSamples.pressure[0]: -500000 Pa, below the lowest pressure phase 'phase0' admits "
+                            "(0 Pa, Hello.phase_min_pressure) (face 0, phase 0)"),
+            std::string::npos)
+      << bad.log(0);
+  ThreeProcs water("admitted_pressure", kShort, {"--min-pressure", "-6e8", "--pressure", "-5e5"});
+  wait_all(water.cs, 20);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(water.cs[i].exit_code, 0) << water.cs[i].name << ":\n" << water.log(i);
+}
+
 TEST(CouplingProcesses, KilledPeerDetectedWithin5sAndEveryoneStops) {
   ThreeProcs r("killed", kLong);
   // Let the run go for a while, then kill the fluid without warning.

@@ -120,6 +120,20 @@ TEST(CouplingWire, SamplesAndDtValidation) {
     to_pb(bad, *e.mutable_samples());
     EXPECT_EQ(validate(e), expected);
   }
+  // Pressures against what each phase's EOS admits (Hello.phase_min_pressure), on wetted faces only.
+  FluidSamples low = s;
+  low.pressure[3] = -2e5;
+  to_pb(low, *e.mutable_samples());
+  EXPECT_EQ(validate(e), "");
+  const std::vector<std::string> names{"water", "air"};
+  EXPECT_EQ(validate_sample_pressures(e.samples(), {-6e8, 0.0}, names),
+            "FluidSamples.pressure[3]: -200000 Pa, below the lowest pressure phase 'air' admits (0 Pa, "
+            "Hello.phase_min_pressure) (face 1, phase 1)");
+  EXPECT_EQ(validate_sample_pressures(e.samples(), {-6e8, -6e8}, names), "");
+  EXPECT_EQ(validate_sample_pressures(e.samples(), {}, names), "");  // no bounds given: no check
+  low.wetted = {1, 0};
+  to_pb(low, *e.mutable_samples());
+  EXPECT_EQ(validate_sample_pressures(e.samples(), {-6e8, 0.0}, names), "");  // nothing sampled at face 1
   pb::Envelope d = make_envelope(Role::Fluid, "t", 0, 0.0);
   d.mutable_dt_proposal()->set_dt(0.0);
   EXPECT_EQ(validate(d), "DtProposal.dt: 0, expected a finite number > 0");
