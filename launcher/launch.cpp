@@ -27,6 +27,7 @@
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
+#include "launcher/python_paths.h"
 #include "launcher/restart_check.h"
 #include "launcher/run_summary.h"
 #include "launcher/scene_check.h"
@@ -161,7 +162,7 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
       const auto expand = [&](std::string c) {
         for (const auto& [key, value] :
              {std::pair<std::string, std::string>{"{bin}", opt.bin_dir.string()},
-              {"{python}", (opt.bin_dir.parent_path() / "python").string()},
+              {"{python}", python_paths(opt.bin_dir).scripts.string()},
               {"{scene_dir}", fs::absolute(opt.scene).parent_path().lexically_normal().string()}})
           for (std::size_t at; (at = c.find(key)) != std::string::npos;) c.replace(at, key.size(), value);
         return c;
@@ -370,6 +371,12 @@ int run(const LaunchOptions& opt) {
   ::setenv("COSIM_SCENE_COPY", scene.string().c_str(), 1);
   // The run's token, for the processes it starts only: an environment is readable by its owner alone.
   ::setenv("COSIM_TOKEN", token.c_str(), 1);
+  // A solver written in Python imports the cosim package (`python3 -m cosim.rigid_piston`) without a path set.
+  {
+    const char* old = std::getenv("PYTHONPATH");
+    const std::string pkg = python_paths(opt.bin_dir).package.string();
+    ::setenv("PYTHONPATH", (old && *old ? pkg + ":" + old : pkg).c_str(), 1);
+  }
 
   const auto stop_children = [&] { stop_all(children, 3.0); };
   const double launch_time = now_s();

@@ -18,13 +18,14 @@ directories of a standalone solid_solver / fluid_solver run. Plots go to --out (
 """
 import argparse
 import csv
-import glob
 import math
 import os
 
-import h5py
 import matplotlib
 import numpy as np
+
+from cosim.series import Series
+from cosim.snapshot import Snapshot
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -33,32 +34,37 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 GAMMA = 1.4
 
 
-def snapshots(directory, prefix):
+def series(directory, prefix):
+    """The snapshot series `prefix` of a run directory (in DIR/prefix/ or DIR itself), as its XDMF index lists it."""
     sub = os.path.join(directory, prefix)
-    base = sub if os.path.isdir(sub) else directory
-    return sorted(glob.glob(os.path.join(base, f"{prefix}_[0-9]*.h5")))
+    return Series(prefix, sub if os.path.isdir(sub) else directory)
+
+
+def snapshots(directory, prefix):
+    """Paths of the snapshots of series(directory, prefix), in time order."""
+    return [str(p) for p in series(directory, prefix).files]
 
 
 def read_fluid(path, phase):
-    with h5py.File(path, "r") as h:
-        g = h["grid"].attrs
-        nx, ny = int(g["cells"][0]), int(g["cells"][1])
-        x0, dx = g["origin"], g["spacing"]
-        f = {"t": float(h.attrs["time"]), "nx": nx, "ny": ny, "x0": x0, "dx": dx}
-        f["rho"] = h[f"cell/{phase}_density"][...]
-        f["p"] = h[f"cell/{phase}_pressure"][...]
-        f["vel"] = h[f"cell/{phase}_velocity"][...]
-        cat = h["cell/embedded_category"][...] if "cell/embedded_category" in h else np.zeros_like(f["rho"])
-        f["flow"] = cat <= 1
+    """Grid and the fields of `phase` of a fluid snapshot; flow: the cells outside any body."""
+    snap = Snapshot.open(path)
+    g = snap.grid
+    f = {"t": snap.time, "nx": g.cells[0], "ny": g.cells[1], "x0": g.origin, "dx": g.spacing}
+    f["rho"] = snap[f"{phase}_density"]
+    f["p"] = snap[f"{phase}_pressure"]
+    f["vel"] = snap[f"{phase}_velocity"]
+    cat = snap["embedded_category"] if "embedded_category" in snap else np.zeros_like(f["rho"])
+    f["flow"] = cat <= 1
     return f
 
 
 def read_solid(path):
-    with h5py.File(path, "r") as h:
-        s = {"t": float(h.attrs["time"]), "x": h["grid/coordinates"][...], "conn": h["grid/connectivity"][...]}
-        for k in ("density", "pressure", "block"):
-            s[k] = h[f"cell/{k}"][...]
-        s["v"] = h["node/velocity"][...]
+    """Mesh, density, pressure, block and node velocity of a solid snapshot."""
+    snap = Snapshot.open(path)
+    s = {"t": snap.time, "x": snap.grid.coordinates, "conn": snap.grid.connectivity}
+    for k in ("density", "pressure", "block"):
+        s[k] = snap.cell[k]
+    s["v"] = snap.node["velocity"]
     return s
 
 
@@ -185,9 +191,9 @@ def nearest(files, times, target):
 
 
 def plot_panel(embedded, conforming, out_dir):
+    fs, cs = series(embedded, "fluid"), series(conforming, "solid")
     fl, sl, cl = snapshots(embedded, "fluid"), snapshots(embedded, "solid"), snapshots(conforming, "solid")
-    ft = [h5py.File(p, "r").attrs["time"] for p in fl]
-    ct = [h5py.File(p, "r").attrs["time"] for p in cl]
+    ft, ct = list(fs.times), list(cs.times)
     fig, axes = plt.subplots(2, 2, figsize=(11, 10))
     for row, target in enumerate((2.0e-4, 6.5e-4)):
         f = read_fluid(nearest(fl, ft, target), "air")
