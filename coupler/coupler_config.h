@@ -33,6 +33,10 @@ struct CouplerConfig {
   double max_message_mb = 256.0;
   bool pressure_predictor = true;           // predictor: linear
   checkpoint::CheckpointPolicy checkpoint;  // off unless coupling.checkpoint is given
+  // Fault injection for tests only (coupler --stall-after-cycle N --stall-seconds S, hidden): the main thread
+  // sleeps after cycle N, as a coupler busy with a large message would; its heartbeat thread goes on.
+  long stall_after_cycle = -1;
+  double stall_seconds = 0.0;
 };
 
 // Throws config::ConfigError naming the file, line and key.

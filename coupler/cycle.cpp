@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "common/app/run_driver.h"
 #include "common/checkpoint/checkpoint_sets.h"
@@ -232,6 +233,7 @@ struct Loop {
     for (long n = start.cycle;; ++n) {
       const double t_prev = t;
       const double proposal = cycle(n, t, dt);
+      if (n == cfg.stall_after_cycle) std::this_thread::sleep_for(std::chrono::duration<double>(cfg.stall_seconds));
       t += dt;
       sum.cycles = n;
       sum.time = t;

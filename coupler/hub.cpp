@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "common/app/run_driver.h"
+#include "common/coupling/endpoints.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/wire.h"
 
@@ -47,6 +48,8 @@ Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(tra
   }
   ::umask(old);
   bound_ = sock_.last_endpoint();
+  beats_ = std::make_unique<HeartbeatService>(ctx_, coupling::heartbeat_bind_endpoint(bound_), o.token,
+                                              o.heartbeat_interval);
 }
 
 Hub::~Hub() {
@@ -135,13 +138,8 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
   if (!e) return fail_or_ignore(why);
   const auto& h = e->header();
 
-  if (e->has_heartbeat()) {
+  if (e->has_heartbeat()) {  // heartbeats belong on the heartbeat endpoint (Welcome.heartbeat_endpoint)
     if (h.token() != opt_.token) return fail_or_ignore("heartbeat with a wrong run token");
-    if (h.sender() != pb::ROLE_FLUID && h.sender() != pb::ROLE_SOLID) return false;
-    Peer& p = peer(coupling::from_pb(h.sender()));
-    if (!p.connected) return false;
-    if (p.hb_id.empty()) p.hb_id = id;
-    if (id == p.hb_id || id == p.id) p.last_seen = now_s();
     return false;
   }
   if (e->has_hello() && known == Role::Coupler) {
@@ -151,6 +149,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     welcome->set_accepted(reason.empty());
     welcome->set_reason(reason);
     welcome->set_heartbeat_interval(opt_.heartbeat_interval);
+    welcome->set_heartbeat_endpoint(beats_->endpoint());
     welcome->set_timeout(opt_.timeout);
     welcome->set_mode(coupling::to_pb(opt_.mode));
     welcome->set_scheme(coupling::to_pb(opt_.scheme));
@@ -175,6 +174,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     p.phase_names.assign(e->hello().phase_names().begin(), e->hello().phase_names().end());
     p.phase_min_pressure.assign(e->hello().phase_min_pressure().begin(), e->hello().phase_min_pressure().end());
     p.last_seen = now_s();
+    beats_->admit(coupling::from_pb(e->hello().role()));
     p.hello = *e;
     p.welcome = w;
     if (!sock_.send({id, coupling::encode(w)}, 500))
@@ -202,24 +202,17 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
 }
 
 void Hub::beat_and_check() {
+  // The heartbeats themselves go on the HeartbeatService's thread; here the verdict on what it heard.
   const double t = now_s();
-  if (t >= next_beat_) {
-    for (Role r : kRoles) {
-      const Peer& p = peer(r);
-      if (!p.connected || p.hb_id.empty()) continue;
-      pb::Envelope e = coupling::make_envelope(Role::Coupler, opt_.token, cycle_, time_);
-      e.mutable_heartbeat();
-      // ROUTER_MANDATORY: an unroutable heartbeat means the peer's connection is closed (process gone).
-      if (!sock_.send({p.hb_id, coupling::encode(e)}, 100))
-        throw PeerLost(fmt::format("{} declared dead: its connection closed", p.describe(r)));
-    }
-    next_beat_ = t + opt_.heartbeat_interval;
-  }
   for (Role r : kRoles) {
     const Peer& p = peer(r);
-    if (p.connected && t - p.last_seen > opt_.timeout)
+    if (!p.connected) continue;
+    if (const std::string why = beats_->lost(r); !why.empty())
+      throw PeerLost(fmt::format("{} declared dead: {}", p.describe(r), why));
+    const double heard = std::max(p.last_seen, beats_->last_heard(r));
+    if (t - heard > opt_.timeout)
       throw PeerLost(fmt::format("{} declared dead: no message or heartbeat for {:.1f} s (timeout {:g} s)",
-                                 p.describe(r), t - p.last_seen, opt_.timeout));
+                                 p.describe(r), t - heard, opt_.timeout));
   }
 }
 
@@ -240,8 +233,7 @@ Hub::Incoming Hub::next_data(const std::string& waiting_for, Role from, double s
           "{} sends heartbeats but has not sent {} for {:.1f} s (coupling.step_timeout {})", peer(from).describe(from),
           waiting_for, waited,
           opt_.step_timeout > 0 ? fmt::format("{:g} s", opt_.step_timeout) : fmt::format("automatic: {:g} s", limit)));
-    const int ms = static_cast<int>(std::clamp((next_beat_ - now_s()) * 1e3, 1.0, 50.0));
-    if (poll_once(ms, in)) return in;
+    if (poll_once(50, in)) return in;
   }
 }
 
@@ -271,6 +263,7 @@ void Hub::handshake() {
 void Hub::send(Role to, pb::Envelope& e) {
   cycle_ = e.header().cycle();
   time_ = e.header().time();
+  beats_->set_clock(cycle_, time_);
   const Peer& p = peer(to);
   if (!sock_.send({p.id, coupling::encode(e)}, 2000))
     throw PeerLost(

@@ -5,11 +5,13 @@
 
 #include <array>
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/coupling/types.h"
 #include "common/coupling/zmq_socket.h"
+#include "coupler/heartbeat_service.h"
 #include "coupler/stranger_limit.h"
 #include "coupler/transcript.h"
 #include "proto/coupling.pb.h"
@@ -35,7 +37,7 @@ inline constexpr double kAutoStepFactor = 50.0, kAutoStepFloor = 120.0;
 
 struct Peer {
   bool connected = false;
-  std::string id, hb_id;  // ROUTER routing ids of the data and heartbeat connections
+  std::string id;  // ROUTER routing id of its data connection (its heartbeats go to the HeartbeatService)
   std::string program;
   long pid = 0;
   std::vector<std::string> phase_names;
@@ -97,9 +99,10 @@ class Hub {
   coupling::ZmqContext ctx_;
   coupling::ZmqSocket sock_{ctx_, coupling::ZmqSocket::Type::Router};
   std::string bound_;
+  std::unique_ptr<HeartbeatService> beats_;  // after sock_ and ctx_: its thread ends first
   std::array<Peer, 2> peers_;
   std::array<std::deque<coupling::pb::Envelope>, 2> inbox_;  // received, not yet expected
-  double next_beat_ = 0, wait_ = 0;
+  double wait_ = 0;
   bool handshake_done_ = false;
   StrangerLimit strangers_;
   long cycle_ = 0;

@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
   std::string restart, checkpoints;
   app.add_option("--restart", restart, "resume from this checkpoint set (RUN/checkpoints/NNNNNNNNN)");
   app.add_option("--checkpoints", checkpoints, "directory of the run's checkpoint sets (default OUT/checkpoints)");
+  long stall_after_cycle = -1;
+  double stall_seconds = 0.0;  // tests only (CouplerConfig::stall_after_cycle): not in --help
+  app.add_option("--stall-after-cycle", stall_after_cycle)->group("");
+  app.add_option("--stall-seconds", stall_seconds)->group("");
   app.set_version_flag("--version", cosim::app::version_line("coupler"));
   app.footer(
       "Examples:\n"
@@ -94,6 +98,8 @@ int main(int argc, char** argv) {
   coupler::HubOptions ho;
   try {
     cfg = coupler::read_coupler_config(scene, overrides);
+    cfg.stall_after_cycle = stall_after_cycle;
+    cfg.stall_seconds = stall_seconds;
     ho.scene_hash = coupling::scene_hash(scene, overrides);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

@@ -51,6 +51,8 @@ std::string canonical_text(const coupling::pb::Envelope& e) {
   h->clear_busy_seconds();
   if (!h->token().empty()) h->set_token("<token>");
   if (c.has_hello()) c.mutable_hello()->clear_pid();
+  if (c.has_welcome() && !c.welcome().heartbeat_endpoint().empty())
+    c.mutable_welcome()->set_heartbeat_endpoint("<heartbeat endpoint>");
   round_all(c);
   std::string text;
   google::protobuf::TextFormat::PrintToString(c, &text);

@@ -24,6 +24,7 @@
 
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
+#include "common/coupling/endpoints.h"
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
@@ -281,15 +282,20 @@ int run(const LaunchOptions& opt) {
   }
   // The coupler's ipc socket file is removed however the run ends (zmq leaves it behind), and with it the private
   // directory made for it when the run directory's path is too long for a socket name.
+  // The same for the coupler's heartbeat socket beside it.
   struct SocketCleanup {
-    fs::path file, dir;
+    fs::path file, heartbeat_file, dir;
     ~SocketCleanup() {
       std::error_code ignored;
-      if (!file.empty()) fs::remove(file, ignored);
+      for (const fs::path& f : {file, heartbeat_file})
+        if (!f.empty()) fs::remove(f, ignored);
       if (!dir.empty()) fs::remove_all(dir, ignored);
     }
   } socket_cleanup;
-  if (endpoint.rfind("ipc://", 0) == 0) socket_cleanup.file = endpoint.substr(6);
+  if (endpoint.rfind("ipc://", 0) == 0) {
+    socket_cleanup.file = endpoint.substr(6);
+    socket_cleanup.heartbeat_file = coupling::heartbeat_bind_endpoint(endpoint).substr(6);
+  }
   if (endpoint.rfind("ipc:///tmp/cosim-", 0) == 0) socket_cleanup.dir = socket_cleanup.file.parent_path();
   std::error_code ec;
   const bool fresh = !fs::exists(out, ec);

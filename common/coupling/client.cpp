@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 
+#include "common/coupling/endpoints.h"
 #include "common/coupling/heartbeat.h"
 #include "common/coupling/wire.h"
 #include "common/coupling/zmq_socket.h"
@@ -116,7 +117,9 @@ struct Client::Impl {
     scheme = from_pb(w.welcome().scheme());
     timeout = w.welcome().timeout() > 0 ? w.welcome().timeout() : 5.0;
     const double interval = w.welcome().heartbeat_interval() > 0 ? w.welcome().heartbeat_interval() : 1.0;
-    heartbeat = std::make_unique<Heartbeat>(ctx, opt.endpoint, opt.role, opt.token, interval, timeout);
+    heartbeat =
+        std::make_unique<Heartbeat>(ctx, heartbeat_connect_endpoint(w.welcome().heartbeat_endpoint(), opt.endpoint),
+                                    opt.role, opt.token, interval, timeout);
     last_return = now_s();
   }
 };

@@ -1,5 +1,6 @@
 // The scene hash all three processes compare in the handshake: FNV-1a 64 of the scene file's bytes followed
-// by "\n--set " + each override, as 16 lower-case hex digits. cosim.client.scene_hash (python/cosim/client.py) computes the same.
+// by "\n--set " + each override, as 16 lower-case hex digits. cosim.client.scene_hash (python/cosim/client.py) computes
+// the same.
 #pragma once
 
 #include <string>

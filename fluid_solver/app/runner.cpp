@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
+#include <cmath>
 #include <cstdlib>
 
 #include "common/app/version.h"
@@ -79,8 +80,11 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 
+// cosim check sets up a fluid state below this size to estimate its first step and snapshot size [bytes].
+constexpr double kCheckSetUpLimit = 1024.0 * 1024.0 * 1024.0;
+
 int run_fluid(const RunOptions& opt) {
-  if (opt.check) {  // the scene as a run reads it (its memory need included), nothing allocated or written
+  if (opt.check) {  // the scene as a run reads it (its memory need included), nothing written
     const auto s = app::load_scene<FluidScene>(opt, load_fluid_scene);
     if (!s) return 2;
     double cells = 1;
@@ -91,13 +95,36 @@ int run_fluid(const RunOptions& opt) {
     }
     std::string names;
     for (const auto& ph : s->phases) names += (names.empty() ? "" : ", ") + ph.name;
-    // The plan line cosim check prints.
+    // The plan line cosim check prints; a state that fits easily is set up to tell the first step and the
+    // size of a snapshot.
+    const double state = static_cast<double>(estimated_state_bytes(*s));
+    std::string plan;
+    if (state < kCheckSetUpLimit) {
+      try {
+        const std::unique_ptr<FluidSimulation> sim = make_simulation(*s);
+        const double dt = sim->stable_dt();
+        const double snapshot = 8.0 * cells * static_cast<double>(SnapshotFields(*sim).values_per_cell());
+        plan = fmt::format(", first step {:.3g} s", dt);
+        if (s->t_end > 0)
+          plan += fmt::format(" (about {:.3g} steps to {:g} s at that step)", std::ceil(s->t_end / dt), s->t_end);
+        plan += fmt::format(", snapshots about {} each", util::format_bytes(snapshot));
+        if (s->coupled) plan += " (at the coupler's output times)";
+        else if (!s->output_times.empty())
+          plan += fmt::format(" ({} for {} of them)", util::format_bytes(snapshot * (s->output_times.size() + 1)),
+                              s->output_times.size() + 1);
+      } catch (const std::exception& e) {
+        spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
+        return 2;
+      }
+    } else {
+      plan = fmt::format(", first step not estimated (the state is over {})", util::format_bytes(kCheckSetUpLimit));
+    }
     std::cout << fmt::format(
-        "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}{}\n", s->dim, shape, cells,
+        "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}{}{}\n", s->dim, shape, cells,
         s->num_phases(), names, s->exchange.dispersed ? ", the second dispersed" : "", to_string(s->flux),
-        util::format_bytes(static_cast<double>(estimated_state_bytes(*s))),
+        util::format_bytes(state),
         s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()),
-        s->checkpoint.enabled() ? ", " + checkpoint::describe(s->checkpoint) : "");
+        s->checkpoint.enabled() ? ", " + checkpoint::describe(s->checkpoint) : "", plan);
     return 0;
   }
   if (opt.coupled()) return run_fluid_coupled(opt);

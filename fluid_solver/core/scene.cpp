@@ -200,6 +200,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     num->finish();
   }
 
+  s.coupled = coupled_end > 0;
   // time
   // In a coupled scene the coupler owns time (coupling.time); the fluid's time: then only sets cfl etc.
   Node time = coupled_end > 0 ? f.child_or_empty("time") : f.child("time");

@@ -130,7 +130,8 @@ struct FluidScene {
   std::vector<Region> regions;
   Profile profile;
 
-  std::vector<double> output_times;         // sorted, in (0, t_end]
+  std::vector<double> output_times;         // sorted, in (0, t_end]; a coupled run's come from the coupler
+  bool coupled = false;                     // the scene has a coupling: section
   int threads = 0;                          // 0: OpenMP default
   checkpoint::CheckpointPolicy checkpoint;  // fluid.checkpoint (fluid-only runs); off unless given
 

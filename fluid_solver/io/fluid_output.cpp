@@ -10,12 +10,10 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim) {
   write_snapshot(series, sim, sim.interface_segments_csv());
 }
 
-void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments) {
+SnapshotFields::SnapshotFields(const FluidSimulation& sim) {
   const FluidScene& s = sim.scene();
   const int np = s.num_phases();
-  std::vector<PhaseFields> ph;
   for (int k = 0; k < np; ++k) ph.push_back(sim.phase_fields(k));
-  std::vector<io::FieldView> views;
   for (int k = 0; k < np; ++k) {
     const std::string& n = s.phases[k].name;
     if (np > 1) views.push_back({n + "_alpha", ph[k].alpha.data(), 1, io::Center::Cell});
@@ -25,7 +23,6 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, cons
     views.push_back({n + "_temperature", ph[k].T.data(), 1, io::Center::Cell});
     if (!ph[k].theta.empty()) views.push_back({n + "_granular_temperature", ph[k].theta.data(), 1, io::Center::Cell});
   }
-  std::vector<double> mrho, mvel, mp;
   if (np > 1) {
     const std::size_t n = ph[0].rho.size();
     mrho.assign(n, 0.0);
@@ -44,15 +41,25 @@ void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, cons
     views.push_back({"mixture_velocity", mvel.data(), 3, io::Center::Cell});
     views.push_back({"mixture_pressure", mp.data(), 1, io::Center::Cell});
   }
-  std::vector<double> kind;
   if (sim.embedded().active) {  // cell categories of paper Table 1 (0 fluid .. 4 solid), for inspection
     kind = sim.embedded_categories();
     views.push_back({"embedded_category", kind.data(), 1, io::Center::Cell});
   }
+}
+
+std::size_t SnapshotFields::values_per_cell() const {
+  std::size_t n = 0;
+  for (const io::FieldView& v : views) n += static_cast<std::size_t>(v.ncomp);
+  return n;
+}
+
+void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments) {
+  const FluidScene& s = sim.scene();
+  const SnapshotFields fields(sim);
   io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
   const std::size_t index = series.count();
-  const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, views);
+  const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, fields.views);
   if (index == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");  // an earlier run's
   if (!segments.empty())  // the embedded interface of this snapshot (ParaView: CSV reader + Table To Points)
     io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index), segments);

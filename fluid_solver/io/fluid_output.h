@@ -9,6 +9,20 @@
 
 namespace cosim::fluid {
 
+// The fields of a snapshot, computed from the simulation's state: per phase <phase>_alpha (two phases only),
+// _density, _velocity, _pressure, _temperature (and _granular_temperature); for two phases the mixture's;
+// embedded_category where bodies are embedded. `views` point into this object.
+struct SnapshotFields {
+  explicit SnapshotFields(const FluidSimulation& sim);
+  SnapshotFields(const SnapshotFields&) = delete;
+  SnapshotFields& operator=(const SnapshotFields&) = delete;
+  std::size_t values_per_cell() const;  // doubles per cell in one snapshot
+
+  std::vector<PhaseFields> ph;
+  std::vector<double> mrho, mvel, mp, kind;
+  std::vector<io::FieldView> views;
+};
+
 // Writes per phase: <phase>_alpha (two phases only), _density, _velocity, _pressure, _temperature;
 // for two phases also mixture_density, mixture_velocity (mass-averaged), mixture_pressure (sum alpha p).
 // The interface segments (CSV) go next to the snapshot: `segments`, or sim.interface_segments_csv().

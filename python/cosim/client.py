@@ -29,6 +29,18 @@ def scene_hash(path, overrides=()):
     return "%016x" % h
 
 
+def heartbeat_connect_endpoint(welcome_endpoint, data_endpoint):
+    """Where the heartbeat connection goes: Welcome.heartbeat_endpoint, a wildcard tcp host (0.0.0.0, *, [::])
+    replaced by the host of the data endpoint; empty: the data endpoint (docs/protocol.md, "Sockets")."""
+    if not welcome_endpoint:
+        return data_endpoint
+    if welcome_endpoint.startswith("tcp://") and data_endpoint.startswith("tcp://"):
+        host, port = welcome_endpoint[6:].rsplit(":", 1)
+        if host in ("0.0.0.0", "*", "[::]"):
+            return "tcp://%s:%s" % (data_endpoint[6:].rsplit(":", 1)[0], port)
+    return welcome_endpoint
+
+
 class Client:
     """One solver's connection to the coupler: handshake in the constructor, heartbeats in a thread, then
     next() / send_faces() / receive_faces() / send_samples() / receive_states() / propose_dt() in the order of
@@ -66,6 +78,7 @@ class Client:
         self.mode = w.welcome.mode
         # SEQUENTIAL or PIPELINED (unspecified reads as pipelined): only a fluid's DtProposal moves with it
         self.scheme = w.welcome.scheme or pb.COUPLING_SCHEME_PIPELINED
+        self.heartbeat_endpoint = heartbeat_connect_endpoint(w.welcome.heartbeat_endpoint, endpoint)
         self._hb = threading.Thread(target=self._heartbeat, args=(w.welcome.heartbeat_interval or 1.0,), daemon=True)
         self._hb.start()
 
@@ -91,7 +104,7 @@ class Client:
     def _heartbeat(self, interval):
         s = self.ctx.socket(zmq.DEALER)
         s.setsockopt(zmq.LINGER, 0)
-        s.connect(self.endpoint)
+        s.connect(self.heartbeat_endpoint)  # the coupler's heartbeat thread (Welcome.heartbeat_endpoint)
         last_seen, next_send = time.monotonic(), 0.0
         while not self._stop.is_set():
             now = time.monotonic()
@@ -227,4 +240,4 @@ class Client:
         self.ctx.term()
 
 
-__all__ = ["Client", "CouplingError", "PROTOCOL_VERSION", "ROLES", "pb", "scene_hash"]
+__all__ = ["Client", "CouplingError", "PROTOCOL_VERSION", "ROLES", "heartbeat_connect_endpoint", "pb", "scene_hash"]

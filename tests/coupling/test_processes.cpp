@@ -196,6 +196,18 @@ TEST(CouplingProcesses, ASamplePressureBelowWhatThePhaseAdmitsIsRefused) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(water.cs[i].exit_code, 0) << water.cs[i].name << ":\n" << water.log(i);
 }
 
+// The coupler's heartbeats have a thread and a socket of their own: a coupler whose main thread is busy for 2.5 s
+// (a large message, a checkpoint) with a 1 s timeout keeps both solvers, and the run completes. A coupler that
+// beats from its main thread loses them after 1 s.
+TEST(CouplingProcesses, ABusyCouplerStillHeartbeats) {
+  const char* scene = "  time: {end: 1.0e-3}\n  output: {interval: 5.0e-4}\n  timeout: 1.0\n  connect_timeout: 5\n";
+  ThreeProcs r("busy_coupler", scene, {}, {}, {"--stall-after-cycle", "3", "--stall-seconds", "2.5"});
+  wait_all(r.cs, 30);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(r.cs[i].exit_code, 0) << r.cs[i].name << ":\n" << r.log(i);
+  // Its heartbeat socket is a file of its own beside the data socket, removed at the end.
+  EXPECT_FALSE(fs::exists(r.dir / "c-hb.sock"));
+}
+
 TEST(CouplingProcesses, KilledPeerDetectedWithin5sAndEveryoneStops) {
   ThreeProcs r("killed", kLong);
   // Let the run go for a while, then kill the fluid without warning.

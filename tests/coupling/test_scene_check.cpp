@@ -65,3 +65,22 @@ TEST(SceneCheck, CosimCheckAcceptsAGoodSceneAndNamesTheFirstBadSectionWritingNot
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);  // out.log only
 }
+
+// The plan states the first step of the initial state and the size of the outputs. Sod (Toro test 1): the left
+// state's c = sqrt(1.4) m/s limits, dt = cfl dx / c = 0.4 * 0.0025 / 1.1832 = 8.45e-4 s, 237 steps to 0.2 s;
+// a snapshot holds density, 3 velocity components, pressure, temperature: 6 x 8 B x 400 cells = 19 KiB, and the
+// run writes 5 (t = 0 and every 0.05 s).
+TEST(SceneCheck, ThePlanStatesTheFirstStepAndTheOutputVolume) {
+  const fs::path dir = test_dir("check_plan_fluid");
+  auto [rc, log] = run_shell(
+      dir, bin("cosim").string() + " check " + (fs::path(COSIM_SOURCE_DIR) / "configs" / "sod.yaml").string());
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("first step 0.000845 s (about 237 steps to 0.2 s at that step)"), std::string::npos) << log;
+  EXPECT_NE(log.find("snapshots about 19 KiB each (94 KiB for 5 of them)"), std::string::npos) << log;
+  // Twice the cells: half the step, twice the steps and the snapshot.
+  std::tie(rc, log) = run_shell(dir, bin("cosim").string() + " check " +
+                                         (fs::path(COSIM_SOURCE_DIR) / "configs" / "sod.yaml").string() +
+                                         " --set 'fluid.mesh.cells=[800]'");
+  EXPECT_NE(log.find("first step 0.000423 s (about 474 steps"), std::string::npos) << log;
+  EXPECT_NE(log.find("snapshots about 38 KiB each"), std::string::npos) << log;
+}

@@ -31,7 +31,7 @@ def test_cosim_client_shim_is_the_same_module_content():
     import cosim_client
     assert cosim_client.scene_hash is client.scene_hash
     assert cosim_client.Client is client.Client and cosim_client.CouplingError is client.CouplingError
-    assert cosim_client.pb is pb and cosim_client.PROTOCOL_VERSION == pb.PROTOCOL_VERSION_CURRENT == 5
+    assert cosim_client.pb is pb and cosim_client.PROTOCOL_VERSION == pb.PROTOCOL_VERSION_CURRENT == 6
 
 
 class StandInCoupler(threading.Thread):
@@ -45,6 +45,9 @@ class StandInCoupler(threading.Thread):
         self.router = self.ctx.socket(zmq.ROUTER)
         self.router.setsockopt(zmq.LINGER, 0)
         self.router.bind(endpoint)
+        self.beats = self.ctx.socket(zmq.ROUTER)  # its heartbeat socket (Welcome.heartbeat_endpoint)
+        self.beats.setsockopt(zmq.LINGER, 0)
+        self.beats.bind(endpoint + "-hb")
         self.received, self.error = [], None
 
     def envelope(self, cycle=0):
@@ -74,6 +77,7 @@ class StandInCoupler(threading.Thread):
             w.welcome.accepted, w.welcome.reason = self.accept, "" if self.accept else "another scene"
             w.welcome.timeout, w.welcome.heartbeat_interval = 5.0, 0.1
             w.welcome.mode, w.welcome.scheme = pb.COUPLING_MODE_ROBIN, pb.COUPLING_SCHEME_SEQUENTIAL
+            w.welcome.heartbeat_endpoint = self.endpoint + "-hb"
             self.router.send_multipart([ident, w.SerializeToString()])
             if not self.accept:
                 return
@@ -87,10 +91,28 @@ class StandInCoupler(threading.Thread):
         except Exception as e:  # reported by the test
             self.error = e
 
+    def heartbeats(self):
+        """The Heartbeats that reached the heartbeat socket so far, waiting a little for the first."""
+        got = []
+        while self.beats.poll(2000 if not got else 0):
+            _, data = self.beats.recv_multipart()
+            e = pb.Envelope()
+            e.ParseFromString(data)
+            got.append(e)
+        return got
+
     def close(self):
         self.join(10)
         self.router.close()
+        self.beats.close()
         self.ctx.term()
+
+
+def test_heartbeat_endpoint_takes_the_data_endpoints_host_for_a_wildcard():
+    assert client.heartbeat_connect_endpoint("tcp://0.0.0.0:41234", "tcp://coupler:5555") == "tcp://coupler:41234"
+    assert client.heartbeat_connect_endpoint("tcp://127.0.0.1:4", "tcp://localhost:5") == "tcp://127.0.0.1:4"
+    assert client.heartbeat_connect_endpoint("ipc:///d/c-hb.sock", "ipc:///d/c.sock") == "ipc:///d/c-hb.sock"
+    assert client.heartbeat_connect_endpoint("", "ipc:///d/c.sock") == "ipc:///d/c.sock"
 
 
 def test_handshake_cycle_and_stop(tmp_path):
@@ -99,6 +121,8 @@ def test_handshake_cycle_and_stop(tmp_path):
     c = client.Client(f"ipc://{tmp_path}/c.sock", "t0ken", "solid", "0123456789abcdef", program="test")
     try:
         assert c.scheme == pb.COUPLING_SCHEME_SEQUENTIAL and c.mode == pb.COUPLING_MODE_ROBIN
+        beats = coupler.heartbeats()  # on the socket the Welcome named, not the data socket
+        assert beats and all(b.WhichOneof("body") == "heartbeat" and b.header.token == "t0ken" for b in beats)
         assert c.next() == ("advance", 0.0) and c.cycle == 0
         c.send_faces(box_faces(2, -1.0, 0.0, [0.0], [0.8], 0.0))
         assert c.next() == ("stop", "end time reached")
@@ -109,7 +133,7 @@ def test_handshake_cycle_and_stop(tmp_path):
     hello, faces = coupler.received[0], coupler.received[1]
     assert hello.hello.role == pb.ROLE_SOLID and hello.hello.scene_hash == "0123456789abcdef"
     assert hello.hello.program == "test" and hello.hello.pid == os.getpid()
-    assert hello.header.token == "t0ken" and hello.header.protocol_version == 5
+    assert hello.header.token == "t0ken" and hello.header.protocol_version == pb.PROTOCOL_VERSION_CURRENT == 6
     assert faces.faces.dim == 2 and faces.faces.count == 4 and faces.faces.nodes_per_face == 2
     assert list(faces.faces.normal[:2]) == [-1.0, 0.0] and faces.header.cycle == 0
 
