@@ -58,10 +58,12 @@ std::string data_item(const Hdf5Shape& shape, std::string_view number_type, cons
 
 // ---------------------------------------------------------------- fields
 
-// Number of values per entity, cells then nodes, slowest dimension first.
+// Number of values per entity, cells then nodes, slowest dimension first; `xml_cells` as the XDMF index states
+// them (with a leading 1 per thin dimension of a 1D or 2D uniform grid; empty: `cells`).
 struct EntityShapes {
   Hdf5Shape cells;
   Hdf5Shape nodes;
+  Hdf5Shape xml_cells;
 };
 
 std::uint64_t product(const Hdf5Shape& shape) {
@@ -115,12 +117,17 @@ std::string write_field(Hdf5File& h5, const FieldView& f, const EntityShapes& sh
   Hdf5Shape shape = cell ? shapes.cells : shapes.nodes;
   const std::uint64_t entities = product(shape);
   const int comps = stored_components(f.ncomp);
-  if (comps > 1) shape.push_back(static_cast<std::uint64_t>(comps));
+  Hdf5Shape xml_shape = cell && !shapes.xml_cells.empty() ? shapes.xml_cells : shape;
+  if (comps > 1) {
+    shape.push_back(static_cast<std::uint64_t>(comps));
+    xml_shape.push_back(static_cast<std::uint64_t>(comps));
+  }
   const std::string dataset = fmt::format("/{}/{}", cell ? "cell" : "node", f.name);
   h5.write_dataset(dataset, stored_values(f, entities), shape);
   return fmt::format(
       "        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n          {}\n        </Attribute>\n",
-      xml_escape(f.name), attribute_type(f.ncomp), cell ? "Cell" : "Node", data_item(shape, "Float", h5_name, dataset));
+      xml_escape(f.name), attribute_type(f.ncomp), cell ? "Cell" : "Node",
+      data_item(xml_shape, "Float", h5_name, dataset));
 }
 
 std::string write_fields(Hdf5File& h5, const std::vector<FieldView>& fields, const EntityShapes& shapes,
@@ -160,13 +167,27 @@ UniformGrid normalized(const UniformGrid& g) {
   return out;
 }
 
-EntityShapes uniform_shapes(const UniformGrid& g) {
+EntityShapes uniform_shapes(const UniformGrid& g, bool slab) {
   EntityShapes s;
   for (int d = g.dim - 1; d >= 0; --d) {
     s.cells.push_back(static_cast<std::uint64_t>(g.cells[d]));
     s.nodes.push_back(static_cast<std::uint64_t>(g.cells[d]) + 1);
   }
+  if (slab) {
+    s.xml_cells.assign(static_cast<std::size_t>(3 - g.dim), 1);
+    s.xml_cells.insert(s.xml_cells.end(), s.cells.begin(), s.cells.end());
+  }
   return s;
+}
+
+// A 1D or 2D grid with cell data only is indexed as a slab one cell thick in its unused dimensions, as thick as
+// its smallest cell and centred on 0: ParaView's default 3D view and slices show it, and both of its XDMF readers
+// load its arrays (with a single node layer, a zero-volume grid, the legacy reader loads none).
+bool slab_layout(const UniformGrid& g, const std::vector<FieldView>& fields) {
+  if (g.dim == 3) return false;
+  for (const FieldView& f : fields)
+    if (f.center != Center::Cell) return false;
+  return true;
 }
 
 void write_uniform_grid(Hdf5File& h5, const UniformGrid& g) {
@@ -178,10 +199,20 @@ void write_uniform_grid(Hdf5File& h5, const UniformGrid& g) {
   h5.write_attribute("/grid", "spacing", std::span<const double>(g.spacing));
 }
 
-// Topology and geometry; unused dimensions get one node layer (z y x order).
-std::string uniform_grid_xml(const UniformGrid& g) {
+// Topology and geometry (z y x order); unused dimensions get one node layer, or with `slab` two, one smallest
+// cell apart around 0.
+std::string uniform_grid_xml(const UniformGrid& g, bool slab) {
   std::array<int, 3> nodes{};
-  for (int d = 0; d < 3; ++d) nodes[d] = d < g.dim ? g.cells[d] + 1 : 1;
+  std::array<double, 3> origin = g.origin, spacing = g.spacing;
+  double thin = spacing[0];
+  for (int d = 1; d < g.dim; ++d) thin = std::min(thin, spacing[d]);
+  for (int d = 0; d < 3; ++d) {
+    nodes[d] = d < g.dim ? g.cells[d] + 1 : slab ? 2 : 1;
+    if (d >= g.dim && slab) {
+      spacing[d] = thin;
+      origin[d] = -0.5 * thin;
+    }
+  }
   return fmt::format(
       "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"{} {} {}\"/>\n"
       "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
@@ -190,7 +221,7 @@ std::string uniform_grid_xml(const UniformGrid& g) {
       "          <DataItem Name=\"Spacing\" Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" "
       "Format=\"XML\">{} {} {}</DataItem>\n"
       "        </Geometry>\n",
-      nodes[2], nodes[1], nodes[0], g.origin[2], g.origin[1], g.origin[0], g.spacing[2], g.spacing[1], g.spacing[0]);
+      nodes[2], nodes[1], nodes[0], origin[2], origin[1], origin[0], spacing[2], spacing[1], spacing[0]);
 }
 
 // ---------------------------------------------------------------- unstructured grids
@@ -226,7 +257,7 @@ void check_unstructured(const UnstructuredGrid& g) {
 }
 
 EntityShapes unstructured_shapes(const UnstructuredGrid& g) {
-  return {{static_cast<std::uint64_t>(g.num_cells)}, {static_cast<std::uint64_t>(g.num_nodes)}};
+  return {{static_cast<std::uint64_t>(g.num_cells)}, {static_cast<std::uint64_t>(g.num_nodes)}, {}};
 }
 
 std::vector<double> xyz_coordinates(const UnstructuredGrid& g) {
@@ -338,11 +369,12 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const UniformGrid
   const UniformGrid grid = normalized(g);
   prepare_directory();
   const std::string name = file_name(count());
-  std::string body = uniform_grid_xml(grid);
+  const bool slab = slab_layout(grid, fields);
+  std::string body = uniform_grid_xml(grid, slab);
   write_hdf5_atomically(dir_ / name, [&](Hdf5File& h5) {
     write_root(h5, time, step);
     write_uniform_grid(h5, grid);
-    body += write_fields(h5, fields, uniform_shapes(grid), name);
+    body += write_fields(h5, fields, uniform_shapes(grid, slab), name);
   });
   return publish(name, grid_element(fs::path(name).stem().string(), time, body));
 }

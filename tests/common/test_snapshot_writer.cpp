@@ -320,6 +320,30 @@ TEST_F(SnapshotSeriesTest, Uniform2DStoresVectorsWithThreeComponents) {
   EXPECT_EQ(check_xml_nesting(xmf), "");
 }
 
+// A 2D grid with cell data only is indexed as a slab one smallest cell thick around z = 0 (ParaView's default view
+// and both XDMF readers show it); the datasets keep their 2D shape.
+TEST_F(SnapshotSeriesTest, Uniform2DCellDataIsIndexedAsASlabOneCellThick) {
+  SnapshotSeries series(dir_, "slab");
+  const UniformGrid g{2, {4, 3, 0}, {0.0, 0.0, 0.0}, {0.1, 0.2, 0.0}};
+  const auto rho = iota_values(12, 0.0);
+  const auto vel = vec2_values(12);
+  const fs::path h5_path =
+      series.write(1.0, 3, g, {{"rho", rho.data(), 1, Center::Cell}, {"velocity", vel.data(), 2, Center::Cell}});
+  const Hdf5File h5(h5_path, Hdf5File::Mode::ReadOnly);
+  EXPECT_EQ(h5.dataset_shape("/cell/rho"), (Hdf5Shape{3, 4}));
+  EXPECT_EQ(h5.read_double_attribute("/grid", "spacing"), (std::vector<double>{0.1, 0.2, 1.0}));
+  const std::string xmf = read_text(dir_ / "slab.xmf");
+  EXPECT_NE(xmf.find("TopologyType=\"3DCoRectMesh\" Dimensions=\"2 4 5\""), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find(">-0.05 0 0</DataItem>"), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find(">0.1 0.2 0.1</DataItem>"), std::string::npos) << xmf;
+  EXPECT_NE(
+      xmf.find("Dimensions=\"1 3 4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">slab_000000.h5:/cell/rho<"),
+      std::string::npos)
+      << xmf;
+  EXPECT_NE(xmf.find("Dimensions=\"1 3 4 3\""), std::string::npos) << xmf;
+  EXPECT_EQ(check_xml_nesting(xmf), "");
+}
+
 TEST_F(SnapshotSeriesTest, Uniform3D) {
   SnapshotSeries series(dir_, "box");
   const UniformGrid g{3, {2, 3, 4}, {0.0, 1.0, 2.0}, {0.5, 0.25, 0.125}};
