@@ -1,13 +1,12 @@
 #include "coupler/heartbeat_service.h"
 
 #include <fmt/format.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 
 #include "common/coupling/wire.h"
+#include "coupler/owner_socket.h"
 
 namespace cosim::coupler {
 
@@ -24,15 +23,7 @@ HeartbeatService::HeartbeatService(coupling::ZmqContext& ctx, const std::string&
     : sock_(ctx, coupling::ZmqSocket::Type::Router), token_(std::move(token)), interval_(interval) {
   sock_.set_router_mandatory();
   sock_.set_max_message_size(4096);  // a heartbeat is a header: anything larger is dropped unread
-  const mode_t old = ::umask(077);   // only this user may connect to the ipc file
-  try {
-    sock_.bind(endpoint);
-  } catch (...) {
-    ::umask(old);
-    throw;
-  }
-  ::umask(old);
-  bound_ = sock_.last_endpoint();
+  bound_ = bind_owner_only(sock_, endpoint);
   // The socket is the thread's from here on (a ZeroMQ socket is used by one thread at a time).
   thread_ = std::thread([this] { loop(); });
 }
@@ -40,10 +31,7 @@ HeartbeatService::HeartbeatService(coupling::ZmqContext& ctx, const std::string&
 HeartbeatService::~HeartbeatService() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
-  if (bound_.rfind("ipc://", 0) == 0 && bound_.size() > 6 && bound_[6] != '@') {
-    std::error_code ignored;
-    std::filesystem::remove(bound_.substr(6), ignored);
-  }
+  remove_socket_file(bound_);
 }
 
 void HeartbeatService::admit(Role r) { slot(r).admitted = true; }

@@ -3,17 +3,16 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 
 #include "common/app/run_driver.h"
 #include "common/coupling/endpoints.h"
 #include "common/coupling/errors.h"
 #include "common/coupling/wire.h"
+#include "coupler/owner_socket.h"
 
 namespace cosim::coupler {
 
@@ -37,17 +36,7 @@ std::string Peer::describe(Role r) const {
 Hub::Hub(const HubOptions& o, Transcript* transcript) : opt_(o), transcript_(transcript) {
   sock_.set_router_mandatory();
   sock_.set_max_message_size(static_cast<std::int64_t>(o.max_message_bytes));
-  // An ipc socket file takes the process's umask: only this user may connect to it (a shared node's other users
-  // could otherwise, under umask 000).
-  const mode_t old = ::umask(077);
-  try {
-    sock_.bind(o.endpoint);
-  } catch (...) {
-    ::umask(old);
-    throw;
-  }
-  ::umask(old);
-  bound_ = sock_.last_endpoint();
+  bound_ = bind_owner_only(sock_, o.endpoint);
   beats_ = std::make_unique<HeartbeatService>(ctx_, coupling::heartbeat_bind_endpoint(bound_), o.token,
                                               o.heartbeat_interval);
 }
@@ -56,11 +45,7 @@ Hub::~Hub() {
   try {
     sock_.set_linger(1000);  // deliver the last Stop / Error
   } catch (...) {}
-  // The socket file of an ipc endpoint this hub bound: libzmq leaves it behind when the socket closes.
-  if (bound_.rfind("ipc://", 0) == 0 && bound_.size() > 6 && bound_[6] != '@') {
-    std::error_code ignored;
-    std::filesystem::remove(bound_.substr(6), ignored);
-  }
+  remove_socket_file(bound_);
 }
 
 void Hub::reply_error(const std::string& id, const std::string& reason) {
