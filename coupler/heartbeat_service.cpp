@@ -51,10 +51,7 @@ void HeartbeatService::receive_one(const coupling::Frames& frames) {
   const auto e = frames.size() == 2 ? coupling::decode(frames[1], why) : std::nullopt;
   const bool ours = e && e->has_heartbeat() && e->header().token() == token_ &&
                     (e->header().sender() == pb::ROLE_FLUID || e->header().sender() == pb::ROLE_SOLID);
-  if (!ours) {
-    ++dropped_;
-    return;
-  }
+  if (!ours) return;  // a stranger's: dropped unanswered
   Slot& s = slot(coupling::from_pb(e->header().sender()));
   if (!s.admitted) return;
   if (s.id.empty()) s.id = frames[0];
@@ -89,7 +86,7 @@ void HeartbeatService::loop() {
     try {
       for (int w = wait_ms; sock_.receive(frames, w); w = 0) receive_one(frames);
     } catch (const std::exception&) {
-      ++dropped_;  // a broken message from a stranger: the loop goes on
+      // a broken message from a stranger: dropped, the loop goes on
     }
   }
 }

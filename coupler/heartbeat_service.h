@@ -33,7 +33,6 @@ class HeartbeatService {
   std::string lost(coupling::Role r) const;
   // The cycle and time its heartbeats carry (informative).
   void set_clock(long cycle, double time);
-  long dropped() const { return dropped_.load(); }  // messages from strangers, dropped
 
  private:
   struct Slot {
@@ -51,7 +50,7 @@ class HeartbeatService {
   std::string token_, bound_;
   double interval_;
   std::array<Slot, 2> slots_;
-  std::atomic<long> cycle_{0}, dropped_{0};
+  std::atomic<long> cycle_{0};
   std::atomic<double> time_{0.0};
   std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;

@@ -27,7 +27,7 @@ inline std::string bind_owner_only(coupling::ZmqSocket& sock, const std::string&
 
 // Removes the socket file of an ipc endpoint that was bound (not an abstract one, ipc://@name).
 inline void remove_socket_file(const std::string& bound) {
-  if (bound.rfind("ipc://", 0) == 0 && bound.size() > 6 && bound[6] != '@') {
+  if (bound.starts_with("ipc://") && bound.size() > 6 && bound[6] != '@') {
     std::error_code ignored;
     std::filesystem::remove(bound.substr(6), ignored);
   }

@@ -10,8 +10,6 @@ namespace cosim::coupling {
 
 namespace detail {
 
-inline bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-
 // "tcp://HOST:PORT" -> {HOST, PORT}; HOST may be bracketed ([::1]).
 inline std::pair<std::string, std::string> tcp_host_port(const std::string& endpoint) {
   const std::string rest = endpoint.substr(6);
@@ -26,7 +24,7 @@ inline std::pair<std::string, std::string> tcp_host_port(const std::string& endp
 //   ipc://DIR/coupler.sock -> ipc://DIR/coupler-hb.sock (any other ipc name: NAME-hb), inproc likewise;
 //   tcp://HOST:PORT        -> tcp://HOST:* (a port of the system's choosing, told in Welcome.heartbeat_endpoint).
 inline std::string heartbeat_bind_endpoint(const std::string& data_endpoint) {
-  if (detail::starts_with(data_endpoint, "tcp://")) return "tcp://" + detail::tcp_host_port(data_endpoint).first + ":*";
+  if (data_endpoint.starts_with("tcp://")) return "tcp://" + detail::tcp_host_port(data_endpoint).first + ":*";
   const std::string suffix = ".sock";
   if (data_endpoint.size() > suffix.size() &&
       data_endpoint.compare(data_endpoint.size() - suffix.size(), suffix.size(), suffix) == 0)
@@ -39,8 +37,7 @@ inline std::string heartbeat_bind_endpoint(const std::string& data_endpoint) {
 // reached the coupler at; empty (a coupler without a heartbeat thread): the data endpoint.
 inline std::string heartbeat_connect_endpoint(const std::string& welcome_endpoint, const std::string& data_endpoint) {
   if (welcome_endpoint.empty()) return data_endpoint;
-  if (!detail::starts_with(welcome_endpoint, "tcp://") || !detail::starts_with(data_endpoint, "tcp://"))
-    return welcome_endpoint;
+  if (!welcome_endpoint.starts_with("tcp://") || !data_endpoint.starts_with("tcp://")) return welcome_endpoint;
   const auto [host, port] = detail::tcp_host_port(welcome_endpoint);
   if (host == "0.0.0.0" || host == "*" || host == "[::]")
     return "tcp://" + detail::tcp_host_port(data_endpoint).first + ":" + port;
