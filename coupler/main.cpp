@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "common/app/cli_suggest.h"
+#include "common/app/plan_facts.h"
 #include "common/app/run_driver.h"
 #include "common/app/run_options.h"
 #include "common/app/version.h"
@@ -62,6 +63,8 @@ int main(int argc, char** argv) {
                  "ZeroMQ endpoint to bind: ipc://PATH or tcp://HOST:PORT (required unless --check)");
   bool check = false;
   app.add_flag("--check", check, "validate the scene's coupling section, run nothing, write nothing (exit 0 or 2)");
+  bool plan_facts = false;  // cosim check's (common/app/plan_facts.h): not in --help
+  app.add_flag("--plan-facts", plan_facts)->group("");
   app.add_option("--token", token, "per-run token the solvers must present (default: $COSIM_TOKEN)");
   app.add_option("--out", out, "output directory (interface_history.csv, timing.csv, coupler_summary.json)");
   app.add_option("--set", overrides, "override a scene value: key.path=value (repeatable)");
@@ -109,6 +112,7 @@ int main(int argc, char** argv) {
     std::cout << fmt::format("coupler: {} interface conditions, {} cycle, end time {:g} s, {} output time(s), {}\n",
                              coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.t_end,
                              cfg.output_times.size(), checkpoint::describe(cfg.checkpoint));
+    if (plan_facts) cosim::app::print_plan_facts({{"end_time", cfg.t_end}, {"dt_max", cfg.dt_max}});
     return 0;
   }
   if (endpoint.empty()) {

@@ -145,6 +145,7 @@ struct ScenePlan {
   std::string name;
   LaunchOptions eff;
   std::vector<std::string> lines;  // what each checked program will do
+  nlohmann::json facts;            // the figures of their plans (scene_check.h)
 };
 std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
   ScenePlan plan;
@@ -199,7 +200,7 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
                       eff.fluid_cmd.empty(),
                       eff.solid_cmd.empty(),
                       eff.coupler_cmd.empty()};
-  if (const auto refusal = check_scene(sc, &plan.lines)) {
+  if (const auto refusal = check_scene(sc, &plan.lines, &plan.facts)) {
     std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
                              refusal->message);
     return std::nullopt;
@@ -244,6 +245,9 @@ int check(const LaunchOptions& opt) {
   std::cout << fmt::format("{}: valid; a {} run of {}\n", opt.scene, plan->coupled ? "coupled" : "fluid-only",
                            plan->coupled ? "the fluid, the solid and the coupler" : "the fluid");
   for (const auto& l : plan->lines) std::cout << "  " << l << "\n";
+  if (plan->coupled)
+    if (const std::string estimate = coupled_estimate(plan->facts); !estimate.empty())
+      std::cout << "  " << estimate << "\n";
   for (const auto& [role, cmd] : {std::pair<const char*, const std::string&>{"fluid", plan->eff.fluid_cmd},
                                   {"solid", plan->eff.solid_cmd},
                                   {"coupler", plan->eff.coupler_cmd}})

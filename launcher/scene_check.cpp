@@ -7,6 +7,12 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "common/app/plan_facts.h"
 
 namespace cosim::launcher {
 
@@ -53,13 +59,13 @@ int run_captured(const std::vector<std::string>& argv, std::string& output, doub
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan) {
+std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan, nlohmann::json* facts) {
   std::vector<std::string> programs;
   if (c.coupled && c.check_coupler) programs.push_back("coupler");
   if (c.check_fluid) programs.push_back("fluid_solver");
   if (c.coupled && c.check_solid) programs.push_back("solid_solver");
   for (const std::string& p : programs) {
-    std::vector<std::string> argv{(c.bin_dir / p).string(), c.scene, "--check", "--quiet"};
+    std::vector<std::string> argv{(c.bin_dir / p).string(), c.scene, "--check", "--quiet", "--plan-facts"};
     for (const auto& o : c.overrides) argv.insert(argv.end(), {"--set", o});
     std::string out;
     const int rc = run_captured(argv, out, 120.0);
@@ -67,10 +73,47 @@ std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::st
       while (!out.empty() && out.back() == '\n') out.pop_back();
       return SceneRefusal{p, rc, rc == 127 && out.empty() ? "cannot execute " + argv[0] : out};
     }
-    while (!out.empty() && out.back() == '\n') out.pop_back();
-    if (plan && !out.empty()) plan->push_back(out);
+    std::string lines;  // the plan without its facts line
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind(app::kPlanFactsTag, 0) == 0) {
+        if (facts)
+          (*facts)[p] = nlohmann::json::parse(line.substr(std::string(app::kPlanFactsTag).size()), nullptr,
+                                              /*allow_exceptions=*/false);
+      } else {
+        lines += (lines.empty() ? "" : "\n") + line;
+      }
+    }
+    if (plan && !lines.empty()) plan->push_back(lines);
   }
   return std::nullopt;
+}
+
+std::string coupled_estimate(const nlohmann::json& facts) {
+  const auto number = [&](const char* program, const char* key) {
+    const auto p = facts.find(program);
+    if (p == facts.end() || !p->is_object()) return 0.0;
+    const auto v = p->find(key);
+    return v != p->end() && v->is_number() ? v->get<double>() : 0.0;
+  };
+  const double fluid = number("fluid_solver", "first_step"), solid = number("solid_solver", "first_step"),
+               subcycles = std::max(1.0, number("solid_solver", "max_subcycles")), dt_max = number("coupler", "dt_max"),
+               end = number("coupler", "end_time");
+  double dt = 0.0;
+  std::string by;
+  const auto take = [&](double v, std::string what) {
+    if (v > 0 && (dt == 0 || v < dt)) dt = v, by = std::move(what);
+  };
+  take(fluid, "the fluid's step");
+  take(solid * subcycles, subcycles > 1 ? fmt::format("the solid's stable step x {:g} substeps", subcycles)
+                                        : std::string("the solid's stable step"));
+  take(dt_max, "coupling.time.dt_max");
+  if (dt <= 0) return "";
+  std::string line = fmt::format("coupled: first cycle's step {:.3g} s ({})", dt, by);
+  if (end > 0)
+    line += fmt::format(", about {:.0f} cycles to {:g} s at that step (the step follows the flow)",
+                        std::ceil(end / dt * (1 - 1e-12)), end);
+  return line;
 }
 
 }  // namespace cosim::launcher

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,8 +27,15 @@ struct SceneCheck {
 };
 
 // The first program that refuses the scene, with its message; nothing when all accept it. `plan` gets what each
-// program that accepts it says it will do (one line each: cells, elements, memory, ...).
-std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan = nullptr);
+// program that accepts it says it will do (one line each: cells, elements, memory, ...), `facts` the figures of
+// its plan by program name (common/app/plan_facts.h).
+std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::string>* plan = nullptr,
+                                        nlohmann::json* facts = nullptr);
+
+// The coupled cycle the programs' facts imply: the first cycle's step (the smallest of the fluid's first step, the
+// solid's stable step times its substeps and coupling.time.dt_max, naming which one limits) and the cycles to the end
+// time at that step. Empty where no step is known.
+std::string coupled_estimate(const nlohmann::json& facts);
 
 // Runs argv (no shell) with stdout and stderr captured; its exit code (128 + N when killed by signal N), -1 when it
 // could not be started. Killed after `timeout` seconds.

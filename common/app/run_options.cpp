@@ -20,6 +20,7 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
   app.add_flag("--check", opt.check,
                "validate the scene and the files it names as a run would read them, run nothing, write nothing: "
                "exit 0 when it can run, 2 with the first error");
+  app.add_flag("--plan-facts", opt.plan_facts)->group("");  // cosim check's (plan_facts.h): not in --help
   app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");
   app.add_flag("--quiet,-q", opt.quiet, "no progress line");
   app.add_option("--threads", opt.threads,

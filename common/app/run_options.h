@@ -20,10 +20,11 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<std::string> overrides;
   bool quiet = false;
-  int threads = 0;      // 0: scene value / OpenMP default
-  std::string coupler;  // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
-  std::string token;    // per-run token of a coupled run (--token, else $COSIM_TOKEN)
-  bool check = false;   // --check: validate the scene and the files it names, run nothing, write nothing
+  int threads = 0;          // 0: scene value / OpenMP default
+  std::string coupler;      // coupled run: the coupler's endpoint (the coupler owns the time loop); empty: standalone
+  std::string token;        // per-run token of a coupled run (--token, else $COSIM_TOKEN)
+  bool check = false;       // --check: validate the scene and the files it names, run nothing, write nothing
+  bool plan_facts = false;  // --plan-facts (with --check, for cosim check): the plan's figures as JSON (plan_facts.h)
   std::filesystem::path restart;      // --restart SET: resume from this checkpoint set (checkpoint_sets.h)
   std::filesystem::path checkpoints;  // --checkpoints ROOT: where a fluid-only run writes its sets (OUT/checkpoints)
   bool coupled() const { return !coupler.empty(); }

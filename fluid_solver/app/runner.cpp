@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "common/app/plan_facts.h"
 #include "common/app/version.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
@@ -98,20 +99,17 @@ int run_fluid(const RunOptions& opt) {
     // The plan line cosim check prints; a state that fits easily is set up to tell the first step and the
     // size of a snapshot.
     const double state = static_cast<double>(estimated_state_bytes(*s));
+    const double snapshot = 8.0 * cells * static_cast<double>(snapshot_values_per_cell(*s));
+    nlohmann::json facts = nlohmann::json::object();
     std::string plan;
     if (state < kCheckSetUpLimit) {
       try {
-        const std::unique_ptr<FluidSimulation> sim = make_simulation(*s);
-        const double dt = sim->stable_dt();
-        const double snapshot = 8.0 * cells * static_cast<double>(SnapshotFields(*sim).values_per_cell());
+        const double dt = make_simulation(*s)->stable_dt();
+        facts["first_step"] = dt;
         plan = fmt::format(", first step {:.3g} s", dt);
         if (s->t_end > 0)
-          plan += fmt::format(" (about {:.3g} steps to {:g} s at that step)", std::ceil(s->t_end / dt), s->t_end);
-        plan += fmt::format(", snapshots about {} each", util::format_bytes(snapshot));
-        if (s->coupled) plan += " (at the coupler's output times)";
-        else if (!s->output_times.empty())
-          plan += fmt::format(" ({} for {} of them)", util::format_bytes(snapshot * (s->output_times.size() + 1)),
-                              s->output_times.size() + 1);
+          plan += fmt::format(" (about {:.0f} steps to {:g} s at that step)", std::ceil(s->t_end / dt * (1 - 1e-12)),
+                              s->t_end);
       } catch (const std::exception& e) {
         spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
         return 2;
@@ -119,12 +117,18 @@ int run_fluid(const RunOptions& opt) {
     } else {
       plan = fmt::format(", first step not estimated (the state is over {})", util::format_bytes(kCheckSetUpLimit));
     }
+    plan += fmt::format(", snapshots about {} each", util::format_bytes(snapshot));
+    if (s->coupled) plan += " (at the coupler's output times)";
+    else if (!s->output_times.empty())
+      plan += fmt::format(" ({} for {} of them)", util::format_bytes(snapshot * (s->output_times.size() + 1)),
+                          s->output_times.size() + 1);
     std::cout << fmt::format(
         "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}{}{}\n", s->dim, shape, cells,
         s->num_phases(), names, s->exchange.dispersed ? ", the second dispersed" : "", to_string(s->flux),
         util::format_bytes(state),
         s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()),
         s->checkpoint.enabled() ? ", " + checkpoint::describe(s->checkpoint) : "", plan);
+    if (opt.plan_facts) app::print_plan_facts(facts);
     return 0;
   }
   if (opt.coupled()) return run_fluid_coupled(opt);

@@ -53,6 +53,14 @@ std::size_t SnapshotFields::values_per_cell() const {
   return n;
 }
 
+std::size_t snapshot_values_per_cell(const FluidScene& s) {
+  const bool embedded_active = s.coupled || !s.embedded.bodies.empty();
+  const std::size_t np = static_cast<std::size_t>(s.num_phases());
+  const bool granular = np == 2 && s.exchange.dispersed && s.exchange.granular.enabled;
+  const std::size_t per_phase = (np > 1 ? 1 : 0) + 1 + 3 + 1 + 1;  // alpha, density, velocity, pressure, T
+  return np * per_phase + (granular ? 1 : 0) + (np > 1 ? 1 + 3 + 1 : 0) + (embedded_active ? 1 : 0);
+}
+
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments) {
   const FluidScene& s = sim.scene();
   const SnapshotFields fields(sim);

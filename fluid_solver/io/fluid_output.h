@@ -23,6 +23,10 @@ struct SnapshotFields {
   std::vector<io::FieldView> views;
 };
 
+// What SnapshotFields(sim).values_per_cell() gives, from the scene alone (cosim check's snapshot size); the
+// embedded categories are written where the scene has bodies or the run is coupled (from the first cycle on).
+std::size_t snapshot_values_per_cell(const FluidScene& scene);
+
 // Writes per phase: <phase>_alpha (two phases only), _density, _velocity, _pressure, _temperature;
 // for two phases also mixture_density, mixture_velocity (mass-averaged), mixture_pressure (sum alpha p).
 // The interface segments (CSV) go next to the snapshot: `segments`, or sim.interface_segments_csv().

@@ -14,6 +14,7 @@
 #include <csignal>
 #include <memory>
 
+#include "common/app/plan_facts.h"
 #include "common/app/version.h"
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
@@ -106,6 +107,11 @@ int run_solid(const RunOptions& opt) {
                                util::format_bytes(sim.bytes_per_element() * m.num_elements),
                                dt < 1e100 ? fmt::format("first stable step {:.3g} s", dt)
                                           : std::string("rigid bodies only (no step limit of its own)"));
+      if (opt.plan_facts) {
+        nlohmann::json facts = {{"max_subcycles", loaded->numerics.max_subcycles}};
+        if (dt < 1e100) facts["first_step"] = dt;
+        app::print_plan_facts(facts);
+      }
     } catch (const std::exception& e) {
       spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_name(), e.what());
       return 2;

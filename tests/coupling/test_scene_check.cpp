@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "coupling_test_util.h"
+#include "launcher/scene_check.h"
 
 using namespace cosim::test;
 
@@ -83,4 +84,43 @@ TEST(SceneCheck, ThePlanStatesTheFirstStepAndTheOutputVolume) {
                                          " --set 'fluid.mesh.cells=[800]'");
   EXPECT_NE(log.find("first step 0.000423 s (about 474 steps"), std::string::npos) << log;
   EXPECT_NE(log.find("snapshots about 38 KiB each"), std::string::npos) << log;
+}
+
+// The coupled cycle: the blast on the steel panel has the fluid's first step 3.64e-6 s and the solid's stable step
+// 9.67e-7 s (its elements are 0.02 m of 4340 steel, c about 5 km/s): the solid's step sets the first cycle's; with
+// 10 solid substeps per cycle the fluid's step does.
+TEST(SceneCheck, ThePlanStatesTheCoupledCyclesStepAndItsNumber) {
+  const fs::path dir = test_dir("check_plan_coupled");
+  const std::string cmd =
+      bin("cosim").string() + " check " + (fs::path(COSIM_SOURCE_DIR) / "configs" / "shock_panel_2d.yaml").string();
+  auto [rc, log] = run_shell(dir, cmd);
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("first stable step 9.67e-07 s"), std::string::npos) << log;
+  EXPECT_NE(log.find("coupled: first cycle's step 9.67e-07 s (the solid's stable step), about 1035 cycles to 0.001 s"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("plan-facts"), std::string::npos) << log;  // the figures' line is cosim's, not the user's
+  std::tie(rc, log) = run_shell(dir, cmd + " --set solid.numerics.max_subcycles=10");
+  EXPECT_NE(log.find("coupled: first cycle's step 3.64e-06 s (the fluid's step), about 275 cycles"), std::string::npos)
+      << log;
+  std::tie(rc, log) = run_shell(dir, cmd + " --set coupling.time.dt_max=5e-7");
+  EXPECT_NE(log.find("coupled: first cycle's step 5e-07 s (coupling.time.dt_max), about 2000 cycles"),
+            std::string::npos)
+      << log;
+}
+
+TEST(SceneCheck, TheCoupledEstimateNamesWhatLimitsTheStep) {
+  using cosim::launcher::coupled_estimate;
+  const nlohmann::json facts = {{"coupler", {{"end_time", 1.0}, {"dt_max", 0.0}}},
+                                {"fluid_solver", {{"first_step", 0.01}}},
+                                {"solid_solver", {{"first_step", 0.004}, {"max_subcycles", 4}}}};
+  EXPECT_EQ(coupled_estimate(facts),
+            "coupled: first cycle's step 0.01 s (the fluid's step), about 100 cycles to 1 s at "
+            "that step (the step follows the flow)");
+  nlohmann::json rigid = facts;  // a rigid solid has no step of its own; a replaced one says nothing
+  rigid["solid_solver"].erase("first_step");
+  rigid["fluid_solver"]["first_step"] = 0.3;
+  EXPECT_EQ(coupled_estimate(rigid).rfind("coupled: first cycle's step 0.3 s (the fluid's step), about 4 cycles", 0),
+            0u);
+  EXPECT_EQ(coupled_estimate(nlohmann::json::object()), "");
 }
