@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `cmake --install BUILD --prefix P` gives a working product: P/bin/cosim runs an example scene from
 # P/share/cosim/examples whose solid is the installed Python piston ({python}), and the installed package reads the
-# run. Usage: install_and_run.sh BUILD_DIR
+# run; the Docker image's run-time package list covers the installed programs' libraries. Usage: install_and_run.sh BUILD_DIR
 set -euo pipefail
 build="$1"
 prefix="$(mktemp -d)"
@@ -11,6 +11,13 @@ for f in bin/cosim bin/coupler bin/fluid_solver bin/solid_solver lib/python3/dis
   share/cosim/python/rigid_piston.py share/cosim/examples/piston_2d.yaml share/doc/cosim/README.md; do
   [ -e "$prefix/$f" ] || { echo "missing in the install: $f"; exit 1; }
 done
+# The Docker run stage's packages cover what the installed programs load (and the check sees one left out).
+here="$(cd "$(dirname "$0")" && pwd)"
+bash "$here/runtime_packages_cover.sh" "$prefix" "$here/../.."
+if bash "$here/runtime_packages_cover.sh" "$prefix" "$here/../.." libyaml-cpp0.7 > /dev/null; then
+  echo "the runtime-package check did not see libyaml-cpp0.7 left out"
+  exit 1
+fi
 cd "$prefix"  # nothing of the build tree's working directory is used
 "$prefix/bin/cosim" run "$prefix/share/cosim/examples/piston_1d.yaml" --out "$prefix/run" --quiet \
   --set coupling.time.end=0.02
