@@ -1,4 +1,4 @@
-// OpenMP threads chosen by the work, and passive waiting (README "Threads"). Measured on 2 cores: a 1D Sod of
+// OpenMP threads chosen by the work, and passive waiting (docs/design.md, "Threads"). Measured on 2 cores: a 1D Sod of
 // 1000 cells took 0.1-0.2 s with one thread but 1.3-28 s with two spinning threads on a busy machine (1D has one
 // row of cells: nothing to share); a 2D run of 32^2 cells already gains from two threads on an idle machine.
 #pragma once

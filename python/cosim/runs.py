@@ -1,6 +1,6 @@
 """A run directory as one object: scene, summaries, snapshot series and CSV histories.
 
-Layouts read (README "Output" and "Coupled runs"):
+Layouts read (docs/output.md):
 
     cosim run SCENE --out DIR           DIR/scene.yaml, launch.json, run_summary.json, energy_account.json,
                                         fluid/ (fluid.xmf, fluid_NNNNNN.h5, fluid_interface_NNNNNN.csv,

@@ -1,4 +1,4 @@
-"""One HDF5 snapshot (format cosim-snapshot-1, README "Output"): metadata, geometry and lazily read fields.
+"""One HDF5 snapshot (format cosim-snapshot-1, docs/output.md "HDF5 schema"): metadata, geometry and lazily read fields.
 
 Nothing is read before it is asked for; each array is read once per Snapshot object and kept, so keep the object
 to reuse what it has read (a Series makes a new one at each indexing).

@@ -1,5 +1,5 @@
 // The solid part of a scene (section `solid:`), read and validated from YAML. Plain data.
-// Every key, its unit and its default are listed in the README (Solid scene keys).
+// Every key, its unit and its default are listed in docs/scene-keys.md.
 #pragma once
 
 #include <array>

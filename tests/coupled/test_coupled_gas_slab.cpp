@@ -93,7 +93,7 @@ TEST(CoupledGasSlab, EndsFollowTheEulerianContactsForEachInterfaceCondition) {
       // Standard and characteristic conditions follow the contacts within a third of a fluid cell on the 40 x 8
       // background (characteristic: also for the light slabs, which standard conditions cannot run). The
       // impedance weights without their last terms (paper eqs. 21-22) only relax the two sides towards each
-      // other once per cycle, so their result depends on the step: up to 1.3 cells off (README, coupled runs).
+      // other once per cycle, so their result depends on the step: up to 1.3 cells off (docs/benchmarks.md).
       // The Robin condition (the default): within 0.15 cells at every ratio from 0.001 to 1000.
       const bool imp = std::string(mode) == "impedance", robin = std::string(mode) == "robin";
       const double tol = imp ? 0.15 : robin ? 0.015 : 0.035;

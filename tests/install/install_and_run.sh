@@ -8,7 +8,7 @@ prefix="$(mktemp -d)"
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > "$prefix/install.log"
 for f in bin/cosim bin/coupler bin/fluid_solver bin/solid_solver lib/python3/dist-packages/cosim/coupling_pb2.py \
-  share/cosim/python/rigid_piston.py share/cosim/examples/piston_2d.yaml share/doc/cosim/README.md; do
+  share/cosim/python/rigid_piston.py share/cosim/examples/piston_2d.yaml share/doc/cosim/README.md share/doc/cosim/docs/methods.md; do
   [ -e "$prefix/$f" ] || { echo "missing in the install: $f"; exit 1; }
 done
 # The Docker run stage's packages cover what the installed programs load (and the check sees one left out).
