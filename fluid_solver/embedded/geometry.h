@@ -64,6 +64,7 @@ struct EmbeddedGeometry {
   std::vector<Vec3> segment_points;        // polygons of the segments (2 points in 2D)
   std::vector<ImagePoint> image_points;    // every ghost and solid-cut cell
   std::vector<SideImage> side_images;      // thin bodies: flow cells' own views across them (thin_body.h)
+  SurfaceTopology topology;                // the surface's normals; its connectivity is kept from cycle to cycle
   CategoryCounts counts;
   GeometryWork work;
   GeometryTiming timing;
@@ -82,7 +83,8 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   if (s.dim != DIM) throw std::runtime_error("embedded geometry: the surface dimension does not match the grid");
   const auto t0 = clock::now();
   e.work = {};
-  const SurfaceTopology topo = build_topology(s);
+  update_topology(s, e.topology);
+  const SurfaceTopology& topo = e.topology;
   const DomainWallFaces skip = domain_wall_faces(g, s, topo, opt.periodic);
   const auto t1 = clock::now();
   clip_surface(g, s, topo, e.segments, e.segment_points, e.work.clip_tests, &skip);

@@ -141,32 +141,86 @@ struct SurfaceTopology {
   std::vector<Vec3> vertex_normal;
   std::vector<Vec3> edge_normal;               // 3D only
   std::vector<std::array<int, 3>> face_edges;  // 3D only: edge ids of (01, 12, 20)
+  int dim = 0;
+  std::vector<std::array<int, 3>> faces;  // the connectivity checked and numbered (update_topology reuses it)
 };
 
-// Checks that the surface is closed and consistently oriented (throws std::runtime_error
-// otherwise) and computes its normals. O(faces).
-inline SurfaceTopology build_topology(const Surface& s) {
-  auto fail = [](const std::string& why) { throw std::runtime_error("embedded surface: " + why); };
-  if (s.dim < 1 || s.dim > 3) fail("dim must be 1, 2 or 3");
-  if (s.velocities.size() != s.vertices.size()) fail("one velocity per vertex is required");
-  const int nv = static_cast<int>(s.vertices.size());
+namespace detail {
+[[noreturn]] inline void topology_fail(const std::string& why) { throw std::runtime_error("embedded surface: " + why); }
+
+// What holds for the vertex positions of every cycle: the dimension, a velocity per vertex, no components beyond
+// the dimension.
+inline void check_vertices(const Surface& s) {
+  if (s.dim < 1 || s.dim > 3) topology_fail("dim must be 1, 2 or 3");
+  if (s.velocities.size() != s.vertices.size()) topology_fail("one velocity per vertex is required");
   for (const auto& x : s.vertices)
     for (int d = s.dim; d < 3; ++d)
-      if (x[static_cast<std::size_t>(d)] != 0) fail("vertex components beyond the surface dimension must be 0");
-  SurfaceTopology t;
+      if (x[static_cast<std::size_t>(d)] != 0)
+        topology_fail("vertex components beyond the surface dimension must be 0");
+}
+
+// The normals for the vertex positions of now, on t's connectivity (its edge ids in 3D), each sum taken over the
+// faces in their order: face normals and measures; vertex normals: the face's (1D), the sum of the two segments'
+// (2D), angle-weighted (3D); edge normals: the sum of the two faces' (3D).
+inline void compute_normals(const Surface& s, SurfaceTopology& t) {
   const std::size_t nf = s.faces.size();
   t.face_normal.resize(nf);
   t.face_measure.resize(nf);
   t.vertex_normal.assign(s.vertices.size(), Vec3{0, 0, 0});
+  for (std::size_t f = 0; f < nf; ++f) {
+    t.face_normal[f] = face_normal(s, static_cast<int>(f), &t.face_measure[f]);
+    if (!(t.face_measure[f] > 0)) topology_fail("face " + std::to_string(f) + " is degenerate (zero length/area)");
+  }
+  if (s.dim == 1) {
+    for (std::size_t f = 0; f < nf; ++f) t.vertex_normal[static_cast<std::size_t>(s.faces[f][0])] = t.face_normal[f];
+    return;
+  }
+  if (s.dim == 2) {
+    for (std::size_t f = 0; f < nf; ++f) {
+      const auto a = static_cast<std::size_t>(s.faces[f][0]), b = static_cast<std::size_t>(s.faces[f][1]);
+      t.vertex_normal[a] = t.vertex_normal[a] + t.face_normal[f];
+      t.vertex_normal[b] = t.vertex_normal[b] + t.face_normal[f];
+    }
+    return;
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& fc = s.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      const int u = fc[static_cast<std::size_t>(k)], v = fc[static_cast<std::size_t>((k + 1) % 3)];
+      const Vec3& x = s.vertices[static_cast<std::size_t>(u)];
+      const Vec3 e1 = s.vertices[static_cast<std::size_t>(v)] - x;
+      const Vec3 e2 = s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>((k + 2) % 3)])] - x;
+      const double angle = std::atan2(norm(cross(e1, e2)), dot(e1, e2));
+      t.vertex_normal[static_cast<std::size_t>(u)] =
+          t.vertex_normal[static_cast<std::size_t>(u)] + angle * t.face_normal[f];
+    }
+  }
+  t.edge_normal.assign(t.edge_normal.size(), Vec3{0, 0, 0});
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      Vec3& en = t.edge_normal[static_cast<std::size_t>(t.face_edges[f][static_cast<std::size_t>(k)])];
+      en = en + t.face_normal[f];
+    }
+}
+}  // namespace detail
+
+// Checks that the surface is closed and consistently oriented (throws std::runtime_error
+// otherwise) and computes its normals. O(faces).
+inline SurfaceTopology build_topology(const Surface& s) {
+  using detail::topology_fail;
+  detail::check_vertices(s);
+  const int nv = static_cast<int>(s.vertices.size());
+  SurfaceTopology t;
+  t.dim = s.dim;
+  t.faces = s.faces;
+  const std::size_t nf = s.faces.size();
   const int nid = s.dim == 1 ? 1 : s.dim;
   for (std::size_t f = 0; f < nf; ++f) {
     for (int k = 0; k < nid; ++k)
       if (s.faces[f][static_cast<std::size_t>(k)] < 0 || s.faces[f][static_cast<std::size_t>(k)] >= nv)
-        fail("face " + std::to_string(f) + " has a vertex id out of range");
+        topology_fail("face " + std::to_string(f) + " has a vertex id out of range");
     if (s.dim == 1 && std::abs(s.faces[f][1]) != 1)
-      fail("1D face " + std::to_string(f) + " needs an orientation of +1 or -1");
-    t.face_normal[f] = face_normal(s, static_cast<int>(f), &t.face_measure[f]);
-    if (!(t.face_measure[f] > 0)) fail("face " + std::to_string(f) + " is degenerate (zero length/area)");
+      topology_fail("1D face " + std::to_string(f) + " needs an orientation of +1 or -1");
   }
   if (s.dim == 1) {  // sorted points must alternate -x, +x (a union of disjoint intervals)
     std::vector<std::size_t> order(nf);
@@ -177,64 +231,58 @@ inline SurfaceTopology build_topology(const Surface& s) {
     });
     for (std::size_t k = 0; k < nf; ++k)
       if (s.faces[order[k]][1] != (k % 2 == 0 ? -1 : 1))
-        fail("1D faces must alternate -x/+x along x (closed intervals)");
-    for (std::size_t f = 0; f < nf; ++f) t.vertex_normal[static_cast<std::size_t>(s.faces[f][0])] = t.face_normal[f];
-    return t;
-  }
-  if (s.dim == 2) {  // every vertex starts exactly one segment and ends exactly one
+        topology_fail("1D faces must alternate -x/+x along x (closed intervals)");
+  } else if (s.dim == 2) {  // every vertex starts exactly one segment and ends exactly one
     std::vector<int> starts(s.vertices.size(), 0), ends(s.vertices.size(), 0);
     for (std::size_t f = 0; f < nf; ++f) {
-      const auto a = static_cast<std::size_t>(s.faces[f][0]), b = static_cast<std::size_t>(s.faces[f][1]);
-      ++starts[a];
-      ++ends[b];
-      t.vertex_normal[a] = t.vertex_normal[a] + t.face_normal[f];
-      t.vertex_normal[b] = t.vertex_normal[b] + t.face_normal[f];
+      ++starts[static_cast<std::size_t>(s.faces[f][0])];
+      ++ends[static_cast<std::size_t>(s.faces[f][1])];
     }
     for (std::size_t v = 0; v < s.vertices.size(); ++v)
       if (starts[v] != ends[v] || starts[v] > 1)
-        fail("the polygon is not closed and consistently oriented at vertex " + std::to_string(v));
-    return t;
+        topology_fail("the polygon is not closed and consistently oriented at vertex " + std::to_string(v));
+  } else {  // 3D: every directed edge (u,v) once and its reverse (v,u) once
+    std::unordered_map<std::uint64_t, int> directed;
+    directed.reserve(3 * nf);
+    auto key = [](int u, int v) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
+    };
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int u = s.faces[f][static_cast<std::size_t>(k)], v = s.faces[f][static_cast<std::size_t>((k + 1) % 3)];
+        if (!directed.emplace(key(u, v), static_cast<int>(f)).second)
+          topology_fail("edge (" + std::to_string(u) + "," + std::to_string(v) +
+                        ") is used twice in the same direction (non-manifold or inconsistent orientation)");
+      }
+    std::unordered_map<std::uint64_t, int> edge_id;
+    edge_id.reserve(3 * nf / 2 + 1);
+    t.face_edges.resize(nf);
+    int edges = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int u = s.faces[f][static_cast<std::size_t>(k)], v = s.faces[f][static_cast<std::size_t>((k + 1) % 3)];
+        if (directed.find(key(v, u)) == directed.end())
+          topology_fail("the surface is not closed: edge (" + std::to_string(u) + "," + std::to_string(v) +
+                        ") has one face only");
+        const auto it = edge_id.emplace(key(std::min(u, v), std::max(u, v)), edges).first;
+        if (it->second == edges) ++edges;
+        t.face_edges[f][static_cast<std::size_t>(k)] = it->second;
+      }
+    t.edge_normal.resize(static_cast<std::size_t>(edges));
   }
-  // 3D: every directed edge (u,v) once and its reverse (v,u) once.
-  std::unordered_map<std::uint64_t, int> directed;
-  directed.reserve(3 * nf);
-  auto key = [](int u, int v) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
-  };
-  t.face_edges.resize(nf);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& fc = s.faces[f];
-    for (int k = 0; k < 3; ++k) {
-      const int u = fc[static_cast<std::size_t>(k)], v = fc[static_cast<std::size_t>((k + 1) % 3)];
-      if (!directed.emplace(key(u, v), static_cast<int>(f)).second)
-        fail("edge (" + std::to_string(u) + "," + std::to_string(v) +
-             ") is used twice in the same direction (non-manifold or inconsistent orientation)");
-      // angle-weighted vertex normal
-      const Vec3& x = s.vertices[static_cast<std::size_t>(u)];
-      const Vec3 e1 = s.vertices[static_cast<std::size_t>(v)] - x;
-      const Vec3 e2 = s.vertices[static_cast<std::size_t>(fc[static_cast<std::size_t>((k + 2) % 3)])] - x;
-      const double angle = std::atan2(norm(cross(e1, e2)), dot(e1, e2));
-      t.vertex_normal[static_cast<std::size_t>(u)] =
-          t.vertex_normal[static_cast<std::size_t>(u)] + angle * t.face_normal[f];
-    }
-  }
-  std::unordered_map<std::uint64_t, int> edge_id;
-  edge_id.reserve(3 * nf / 2 + 1);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& fc = s.faces[f];
-    for (int k = 0; k < 3; ++k) {
-      const int u = fc[static_cast<std::size_t>(k)], v = fc[static_cast<std::size_t>((k + 1) % 3)];
-      if (directed.find(key(v, u)) == directed.end())
-        fail("the surface is not closed: edge (" + std::to_string(u) + "," + std::to_string(v) + ") has one face only");
-      const auto [it, fresh] =
-          edge_id.emplace(key(std::min(u, v), std::max(u, v)), static_cast<int>(t.edge_normal.size()));
-      if (fresh) t.edge_normal.push_back(Vec3{0, 0, 0});
-      t.edge_normal[static_cast<std::size_t>(it->second)] =
-          t.edge_normal[static_cast<std::size_t>(it->second)] + t.face_normal[f];
-      t.face_edges[f][static_cast<std::size_t>(k)] = it->second;
-    }
-  }
+  detail::compute_normals(s, t);
   return t;
+}
+
+// `t` for this cycle's surface: a surface with the faces `t` was built for (a body that moves and deforms) keeps
+// its checked connectivity and gets new normals only, the same values build_topology gives; any other is built anew.
+inline void update_topology(const Surface& s, SurfaceTopology& t) {
+  if (t.dim != s.dim || t.vertex_normal.size() != s.vertices.size() || t.faces != s.faces) {
+    t = build_topology(s);
+    return;
+  }
+  detail::check_vertices(s);
+  detail::compute_normals(s, t);
 }
 
 // Pseudo-normal (not normalised) of the closest feature of face f.

@@ -494,6 +494,33 @@ TEST(EmbeddedGeometry, OpenOrInconsistentSurfacesAreRejected) {
                std::runtime_error);  // 3D surface, 2D grid
 }
 
+// A body that moves and deforms keeps its faces: the topology of the cycle before is reused and only its normals
+// are recomputed, to the same bits as a topology built anew; new faces are checked again.
+TEST(EmbeddedGeometry, ADeformedSurfaceReusesItsTopologyWithTheSameNormals) {
+  for (const Surface& start : {make_sphere({0.5, 0.5, 0.5}, 0.2, 2), make_circle({0.5, 0.5, 0}, 0.2, 24)}) {
+    SurfaceTopology reused = build_topology(start);
+    Surface moved = start;
+    for (std::size_t v = 0; v < moved.vertices.size(); ++v)  // a squeeze and a shift
+      for (int d = 0; d < start.dim; ++d)
+        moved.vertices[v][static_cast<std::size_t>(d)] +=
+            0.01 * std::sin(3.0 * static_cast<double>(v) + d) + (d == 0 ? 0.003 : 0.0);
+    update_topology(moved, reused);
+    const SurfaceTopology fresh = build_topology(moved);
+    ASSERT_EQ(reused.face_normal.size(), fresh.face_normal.size());
+    for (std::size_t f = 0; f < fresh.face_normal.size(); ++f) {
+      EXPECT_EQ(reused.face_normal[f], fresh.face_normal[f]);
+      EXPECT_EQ(reused.face_measure[f], fresh.face_measure[f]);
+    }
+    for (std::size_t v = 0; v < fresh.vertex_normal.size(); ++v)
+      EXPECT_EQ(reused.vertex_normal[v], fresh.vertex_normal[v]);
+    EXPECT_EQ(reused.edge_normal, fresh.edge_normal);
+    EXPECT_EQ(reused.face_edges, fresh.face_edges);
+    Surface flipped = moved;  // other faces: the connectivity is checked again
+    std::swap(flipped.faces[3][0], flipped.faces[3][1]);
+    EXPECT_THROW(update_topology(flipped, reused), std::runtime_error);
+  }
+}
+
 TEST(EmbeddedGeometry, SceneBodiesBecomeClosedSurfaces) {
   EmbeddedSettings set2;
   EmbeddedBody box;
