@@ -2,13 +2,44 @@
 // one cell, all Runge-Kutta stages) and state memory per cell, for a scene and thread count.
 // Usage: fluid_throughput SCENE.yaml [--steps N] [--threads T] [--after T_s] [--set k=v ...]
 // --after advances the scene to that time first, so the rate is measured on a developed flow.
+// Roofline: the solver's bytes per cell-update from its passes (FluidSimulation::traffic_bytes_per_cell_update)
+// against the STREAM triad a[i] = b[i] + s c[i] measured in the same run on the same threads (24 bytes per
+// element, arrays of 128 MiB each, far beyond the caches, best of 5): the bandwidth ceiling is triad / bytes.
 #include <fmt/format.h>
 #include <omp.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "fluid_solver/core/simulation.h"
+
+namespace {
+
+// Triad bandwidth [bytes/s] on the current OpenMP threads.
+double triad_bandwidth() {
+  const std::size_t n = std::size_t{1} << 24;
+  std::vector<double> a(n), b(n, 1.0), c(n, 2.0);
+  const long ln = static_cast<long>(n);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < ln; ++i) a[static_cast<std::size_t>(i)] = 0.0;  // first touch on the threads that use it
+  double best = 1e300;
+  for (int rep = 0; rep < 5; ++rep) {
+    const double s = 0.5 + rep;
+    const auto t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < ln; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      a[k] = b[k] + s * c[k];
+    }
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  if (a[n / 2] != b[n / 2] + 4.5 * c[n / 2]) return 0.0;  // the loop ran (and is not optimised away)
+  return 24.0 * static_cast<double>(n) / best;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fluid solver throughput benchmark"};
@@ -36,9 +67,12 @@ int main(int argc, char** argv) {
   for (int i = 0; i < steps; ++i) sim->advance(sim->stable_dt());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cells = static_cast<double>(sim->interior_cells());
+  const double rate = steps * cells / wall, traffic = sim->traffic_bytes_per_cell_update();
+  const double triad = triad_bandwidth(), ceiling = triad / traffic;
   fmt::print(
       "{{\"scene\": \"{}\", \"cells\": {}, \"phases\": {}, \"threads\": {}, \"steps\": {}, \"wall_s\": {:.4f}, "
-      "\"cell_updates_per_s\": {:.6e}, \"bytes_per_cell\": {:.1f}}}\n",
-      scene.name, cells, scene.num_phases(), omp_get_max_threads(), steps, wall, steps * cells / wall,
-      static_cast<double>(sim->state_bytes()) / cells);
+      "\"cell_updates_per_s\": {:.6e}, \"bytes_per_cell\": {:.1f}, \"traffic_bytes_per_cell_update\": {:.0f}, "
+      "\"triad_bytes_per_s\": {:.4e}, \"ceiling_cell_updates_per_s\": {:.4e}, \"fraction_of_ceiling\": {:.3f}}}\n",
+      scene.name, cells, scene.num_phases(), omp_get_max_threads(), steps, wall, rate,
+      static_cast<double>(sim->state_bytes()) / cells, traffic, triad, ceiling, rate / ceiling);
 }

@@ -89,12 +89,13 @@ def throughput(quick):
             best["label"] = label
             results.append(best)
     print("\n### Throughput, 2D, 1000 x 1000 cells\n")
-    print("| scene | threads | Mcell-updates/s | speed-up | bytes/cell |")
-    print("|---|---|---|---|---|")
+    print("| scene | threads | Mcell-updates/s | speed-up | bytes/cell | " + ROOFLINE_HEADER)
+    print("|---|---|---|---|---|---|---|---|---|")
     for i, r in enumerate(results):
         base = results[i - (i % 2)]["cell_updates_per_s"]
         print(f"| {r['label']} | {r['threads']} | {r['cell_updates_per_s'] / 1e6:.2f} | "
-              f"{r['cell_updates_per_s'] / base:.2f} | {r['bytes_per_cell']:.0f} |")
+              f"{r['cell_updates_per_s'] / base:.2f} | {r['bytes_per_cell']:.0f} | {roofline(r)}")
+    print(ROOFLINE_NOTE)
     fig, ax = plt.subplots(figsize=(7, 3.5))
     labels = [r["label"] for r in results[::2]]
     x = range(len(labels))
@@ -108,6 +109,18 @@ def throughput(quick):
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, "fluid_throughput.png"), dpi=110)
     return results
+
+
+ROOFLINE_HEADER = "bytes/cell-update | triad GB/s | of the bandwidth ceiling |"
+ROOFLINE_NOTE = ("\nbytes/cell-update: what the step's passes read and write per cell (fluid_solver/core/solver.h, "
+                 "traffic_bytes_per_cell_update); triad: STREAM's a = b + s c on the same threads in the same run; "
+                 "ceiling = triad / bytes per cell-update.")
+
+
+def roofline(r):
+    """The roofline columns of a fluid_throughput result."""
+    return (f"{r['traffic_bytes_per_cell_update']:.0f} | {r['triad_bytes_per_s'] / 1e9:.1f} | "
+            f"{100 * r['fraction_of_ceiling']:.0f}% of {r['ceiling_cell_updates_per_s'] / 1e6:.1f} M/s |")
 
 
 def throughput_3d(quick):
@@ -128,12 +141,13 @@ def throughput_3d(quick):
             out.update(n=n, after=after)
             rows.append(out)
     print("\n### Throughput, 3D two-phase (tungsten blast fluid)\n")
-    print("| cells | timed after | threads | Mcell-updates/s | per thread | bytes/cell |")
-    print("|---|---|---|---|---|---|")
+    print("| cells | timed after | threads | Mcell-updates/s | per thread | bytes/cell | " + ROOFLINE_HEADER)
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         rate = r["cell_updates_per_s"] / 1e6
         print(f"| {r['n']}^3 | {r['after'] * 1e3:.1f} ms | {r['threads']} | {rate:.2f} | {rate / r['threads']:.2f} | "
-              f"{r['bytes_per_cell']:.0f} |")
+              f"{r['bytes_per_cell']:.0f} | {roofline(r)}")
+    print(ROOFLINE_NOTE)
     return rows
 
 

@@ -135,6 +135,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   }
   std::size_t interior_cells() const override { return inner_->interior_cells(); }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
+  double traffic_bytes_per_cell_update() const override { return inner_->traffic_bytes_per_cell_update(); }
   // The bodies move with the flow's steps: their vertices belong to the state.
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);

@@ -69,6 +69,8 @@ class FluidSimulation {
   virtual void restore_state(const checkpoint::PartReader& r) = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
+  // Bytes a time step reads and writes per cell in its passes over the grid (the benchmark's roofline; solver.h).
+  virtual double traffic_bytes_per_cell_update() const = 0;
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state
   // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
   virtual void set_embedded(EmbeddedState state, bool second_order) = 0;

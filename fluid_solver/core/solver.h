@@ -71,6 +71,22 @@ class Solver final : public FluidSimulation {
   double time() const override { return t_; }
   long steps() const override { return steps_; }
   std::size_t interior_cells() const override { return g_.interior_count(); }
+  // The step's passes over the grid, in doubles per cell, each array read or written once per pass (rows of
+  // edge states and face fluxes stay in cache; writes counted once, as STREAM counts them): stable_dt's
+  // primitives (read U, write W) and wave rate (read W); per Runge-Kutta stage the primitives (but the first,
+  // which stable_dt's serve), the x sweep (read W, write R), each further sweep (read W, read and write R) and
+  // the update (read U, R and U0 or write U0, write U; the relaxations fused into it); with drag or heat
+  // exchange one more pass (read and write U). Ghost layers, boundary and embedded-body work are not counted.
+  double traffic_bytes_per_cell_update() const override {
+    const int stages = scene_.integrator == TimeIntegrator::RK2 ? 2 : 3;
+    const double nc = ncons_, np = nprim_;
+    double doubles = (nc + np) + np + (stages - 1) * (nc + np);
+    doubles += stages * ((np + nc) + (DIM - 1) * (np + 2 * nc) + 4 * nc);
+    const auto& ex = scene_.exchange;
+    if (NP == 2 && (ex.velocity == VelocityRelaxation::Drag || ex.heat_transfer || gran_)) doubles += 2 * nc;
+    return 8.0 * doubles;
+  }
+
   std::size_t state_bytes() const override {
     std::size_t b = (U_.data.size() + U0_.data.size() + R_.data.size() + W_.data.size()) * sizeof(double);
     for (const auto& sc : scratch_) b += sc.data.size() * sizeof(double);
