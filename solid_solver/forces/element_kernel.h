@@ -20,6 +20,7 @@
 
 #include <cmath>
 
+#include "solid_solver/forces/lanes.h"
 #include "solid_solver/kinematics/element_geometry.h"
 #include "solid_solver/materials/material.h"
 #include "solid_solver/materials/strength.h"
@@ -53,146 +54,186 @@ struct ElementPassResult {
   int bad_kind = 0;       // 1 inverted, 2 non-finite state
 };
 
+// Elements are processed in batches of lanes::kLanes consecutive elements, one per vector lane; a batch
+// at the end of the range repeats its last element in the unused lanes, which are never written back.
+// Every branch of the scalar algorithm is a per-lane select, so each element gets the bits it would get
+// alone. An element that fails (inverted, or a non-finite state) is not written back; the first failed
+// element of the range is reported.
 template <int D, class Eos, bool Strength>
 void element_pass(const ElementPassArgs& A, const Eos& eos, int begin, int end, ElementPassResult& R) {
+  using lanes::Lanes;
+  constexpr int W = lanes::kLanes;
   constexpr int N = ElemTraits<D>::npe;
   constexpr int NH = ElemTraits<D>::nhg;
   constexpr double kD = D == 2 ? 1.0 : 2.0;
   const double dt = A.dt;
+  const int batches = (end - begin + W - 1) / W;
   double dt_min = 1e300, ie_sum = 0.0;
   int bad = -1, bad_kind = 0;
 #pragma omp parallel for schedule(static) reduction(min : dt_min) reduction(+ : ie_sum) if (end - begin > 4096)
-  for (int z = begin; z < end; ++z) {
-    const int* cn = A.conn + static_cast<std::ptrdiff_t>(z) * N;
-    double x[N][D], v[N][D];
-    double* f = A.fc + static_cast<std::ptrdiff_t>(z) * N * D;
-    double w = 0.0;
-    for (int a = 0; a < N; ++a) {
-      const std::ptrdiff_t o = static_cast<std::ptrdiff_t>(cn[a]) * D;
-      for (int d = 0; d < D; ++d) {
-        x[a][d] = A.x[o + d];
-        v[a][d] = A.v[o + d];
-        w += f[a * D + d] * A.vbar[o + d];
-      }
+  for (int bt = 0; bt < batches; ++bt) {
+    const int z0 = begin + bt * W;
+    const int nl = end - z0 < W ? end - z0 : W;  // live lanes
+    std::ptrdiff_t zl[W], node[N][W];
+    for (int l = 0; l < W; ++l) zl[l] = z0 + (l < nl ? l : nl - 1);
+    for (int a = 0; a < N; ++a)
+      for (int l = 0; l < W; ++l) node[a][l] = A.conn[zl[l] * N + a];
+    // Gather: node coordinates and velocities, and the work of the previous corner forces.
+    Lanes x[N][D], v[N][D];
+    Lanes w{};
+    {
+      std::ptrdiff_t idx[W], fidx[W];
+      for (int a = 0; a < N; ++a)
+        for (int d = 0; d < D; ++d) {
+          for (int l = 0; l < W; ++l) {
+            idx[l] = node[a][l] * D + d;
+            fidx[l] = zl[l] * (N * D) + a * D + d;
+          }
+          x[a][d] = lanes::gather(A.x, idx);
+          v[a][d] = lanes::gather(A.v, idx);
+          w += lanes::gather(A.fc, fidx) * lanes::gather(A.vbar, idx);
+        }
     }
+    auto load = [&](const double* p) {
+      Lanes r;
+      for (int l = 0; l < W; ++l) r[l] = p[zl[l]];
+      return r;
+    };
     // 1. compatible energy update
-    const double IE = A.ie[z] - dt * w;
+    const Lanes IE = load(A.ie) - dt * w;
     // 2. geometry
-    double B[N][D];
-    const double V = element_b_matrix(x, B);
-    if (!(V > 0.0)) {
-#pragma omp critical(solid_bad_element)
-      if (bad < 0 || z < bad) {
-        bad = z;
-        bad_kind = 1;
-      }
-      continue;
-    }
-    const double Vold = A.vol[z];
+    Lanes B[N][D];
+    const Lanes V = element_b_matrix(x, B);
+    const auto upright = V > 0.0;  // a NaN volume fails too
+    const Lanes Vold = load(A.vol);
     // 3.-4. kinematics and deviatoric stress
-    double divv;
-    double sz[6] = {0, 0, 0, 0, 0, 0};
+    Lanes divv;
+    Lanes sz[6] = {};
     if constexpr (Strength) {
-      double xm[N][D], Bm[N][D];
+      Lanes xm[N][D], Bm[N][D];
       for (int a = 0; a < N; ++a)
         for (int d = 0; d < D; ++d) xm[a][d] = x[a][d] - 0.5 * dt * v[a][d];
-      const double Vm = element_b_matrix(xm, Bm);
-      const double iv = 1.0 / Vm;
-      double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+      const Lanes Vm = element_b_matrix(xm, Bm);
+      const Lanes iv = 1.0 / Vm;
+      Lanes L[3][3] = {};
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) {
-          double sum = 0.0;
+          Lanes sum{};
           for (int a = 0; a < N; ++a) sum += v[a][i] * Bm[a][j];
           L[i][j] = sum * iv;
         }
       divv = L[0][0] + L[1][1] + L[2][2];
-      double* sp = A.s + static_cast<std::ptrdiff_t>(z) * 6;
-      for (int k = 0; k < 6; ++k) sz[k] = sp[k];
-      const double deps = update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress,
-                                          A.strength.hardening, A.eps_p[z], sz);
-      A.eps_p[z] += deps;
+      {
+        std::ptrdiff_t idx[W];
+        for (int k = 0; k < 6; ++k) {
+          for (int l = 0; l < W; ++l) idx[l] = zl[l] * 6 + k;
+          sz[k] = lanes::gather(A.s, idx);
+        }
+      }
+      const Lanes eps0 = load(A.eps_p);
+      const Lanes deps =
+          update_deviator(L, dt, A.strength.shear_modulus, A.strength.yield_stress, A.strength.hardening, eps0, sz);
+      const Lanes eps1 = eps0 + deps;
       // Plastic work sigma_eq d eps_p V; after the return sigma_eq = Y0 + H eps_p (J2 flow).
-      A.w_p[z] += (A.strength.yield_stress + A.strength.hardening * A.eps_p[z]) * deps * Vm;
-      for (int k = 0; k < 6; ++k) sp[k] = sz[k];
+      const Lanes wp = load(A.w_p) + (A.strength.yield_stress + A.strength.hardening * eps1) * deps * Vm;
+      for (int l = 0; l < nl; ++l) {
+        if (!upright[l]) continue;
+        const std::ptrdiff_t z = zl[l];
+        A.eps_p[z] = eps1[l];
+        A.w_p[z] = wp[l];
+        for (int k = 0; k < 6; ++k) A.s[z * 6 + k] = sz[k][l];
+      }
     } else if (dt > 0.0) {
       divv = (V - Vold) / (dt * 0.5 * (V + Vold));
     } else {
-      double sum = 0.0;
+      Lanes sum{};
       for (int a = 0; a < N; ++a)
         for (int d = 0; d < D; ++d) sum += v[a][d] * B[a][d];
       divv = sum / V;
     }
     // 5. EOS
-    const double M = A.emass[z];
-    const double rho = M / V;
-    const double e_pred = (IE - 0.5 * (A.p[z] + A.q[z]) * (V - Vold)) / M;
-    double P, c2;
+    const Lanes M = load(A.emass);
+    const Lanes rho = M / V;
+    const Lanes e_pred = (IE - 0.5 * (load(A.p) + load(A.q)) * (V - Vold)) / M;
+    Lanes P, c2;
     eos.eval(rho, e_pred, P, c2);
-    if (P < A.p_min) P = A.p_min;
+    P = P < A.p_min ? lanes::splat(A.p_min) : P;
     if constexpr (Strength) c2 += 4.0 * A.strength.shear_modulus / (3.0 * rho);
-    if (!(c2 >= 0.0) || !std::isfinite(P) || !std::isfinite(IE)) {
-#pragma omp critical(solid_bad_element)
-      if (bad < 0 || z < bad) {
-        bad = z;
-        bad_kind = 2;
-      }
-      continue;
-    }
-    const double cs = std::sqrt(c2);
-    // 6. artificial viscosity
-    const double Lq = D == 3 ? std::cbrt(V) : std::sqrt(V);
-    double Q = 0.0, b = 0.0;
-    if (divv < 0.0) {
-      const double ad = -divv;
-      const double lin = A.cq2 * Lq * ad + A.cl * cs;
-      Q = rho * Lq * ad * lin;
-      b = 2.0 * lin;
-    }
+    const Lanes cs = lanes::sqrt(c2);
+    // 6. artificial viscosity (compression only)
+    Lanes Lq;
+    if constexpr (D == 3) Lq = lanes::cbrt(V);
+    else Lq = lanes::sqrt(V);
+    const auto compressing = divv < 0.0;
+    const Lanes ad = -divv;
+    const Lanes lin = A.cq2 * Lq * ad + A.cl * cs;
+    const Lanes Q = compressing ? rho * Lq * ad * lin : Lanes{};
+    const Lanes b = compressing ? 2.0 * lin : Lanes{};
     // 7. stable step
-    double sb2 = 0.0;
+    Lanes sb2{};
     for (int a = 0; a < N; ++a)
       for (int d = 0; d < D; ++d) sb2 += B[a][d] * B[a][d];
-    const double l = V / std::sqrt(kD * sb2);
-    const double dtz = l / (b + std::sqrt(b * b + c2));
-    if (dtz < dt_min) dt_min = dtz;
+    const Lanes l_min = V / lanes::sqrt(kD * sb2);
+    const Lanes dtz = l_min / (b + lanes::sqrt(b * b + c2));
     // 8. corner forces
-    double sig[3][3] = {{sz[0], sz[3], sz[5]}, {sz[3], sz[1], sz[4]}, {sz[5], sz[4], sz[2]}};
-    for (int d = 0; d < 3; ++d) sig[d][d] -= P + Q;
-    for (int a = 0; a < N; ++a)
-      for (int i = 0; i < D; ++i) {
-        double sum = 0.0;
-        for (int j = 0; j < D; ++j) sum += sig[i][j] * B[a][j];
-        f[a * D + i] = -sum;
-      }
-    if (A.kappa > 0.0 && cs > 0.0) {
-      const double C = A.kappa * rho * cs * V / Lq;
-      const double iv = 1.0 / V;
+    Lanes f[N][D];
+    {
+      const Lanes PQ = P + Q;
+      const Lanes sig[3][3] = {{sz[0] - PQ, sz[3], sz[5]}, {sz[3], sz[1] - PQ, sz[4]}, {sz[5], sz[4], sz[2] - PQ}};
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < D; ++i) {
+          Lanes sum{};
+          for (int j = 0; j < D; ++j) sum += sig[i][j] * B[a][j];
+          f[a][i] = -sum;
+        }
+    }
+    const auto sounding = cs > 0.0;
+    if (A.kappa > 0.0 && lanes::any(sounding)) {
+      const Lanes C = A.kappa * rho * cs * V / Lq;
+      const Lanes iv = 1.0 / V;
       for (int k = 0; k < NH; ++k) {
         const double* h = ElemTraits<D>::h[k];
-        double hx[D];
+        Lanes hx[D];
         for (int d = 0; d < D; ++d) {
-          double sum = 0.0;
+          Lanes sum{};
           for (int a = 0; a < N; ++a) sum += h[a] * x[a][d];
           hx[d] = sum * iv;
         }
-        double g[N];
-        double qk[D] = {};
+        Lanes g[N];
+        Lanes qk[D] = {};
         for (int a = 0; a < N; ++a) {
-          double dot = 0.0;
+          Lanes dot{};
           for (int d = 0; d < D; ++d) dot += hx[d] * B[a][d];
           g[a] = h[a] - dot;
           for (int d = 0; d < D; ++d) qk[d] += v[a][d] * g[a];
         }
         for (int a = 0; a < N; ++a)
-          for (int d = 0; d < D; ++d) f[a * D + d] -= C * g[a] * qk[d];
+          for (int d = 0; d < D; ++d) f[a][d] = sounding ? f[a][d] - C * g[a] * qk[d] : f[a][d];
       }
     }
-    A.ie[z] = IE;
-    ie_sum += IE;
-    A.vol[z] = V;
-    A.p[z] = P;
-    A.q[z] = Q;
-    A.c[z] = cs;
+    // Write-back of the live, sound lanes, in element order.
+    for (int l = 0; l < nl; ++l) {
+      const int z = z0 + l;
+      const int kind = !upright[l] ? 1 : (!(c2[l] >= 0.0) || !std::isfinite(P[l]) || !std::isfinite(IE[l])) ? 2 : 0;
+      if (kind != 0) {
+#pragma omp critical(solid_bad_element)
+        if (bad < 0 || z < bad) {
+          bad = z;
+          bad_kind = kind;
+        }
+        continue;
+      }
+      if (dtz[l] < dt_min) dt_min = dtz[l];
+      double* fz = A.fc + static_cast<std::ptrdiff_t>(z) * N * D;
+      for (int a = 0; a < N; ++a)
+        for (int d = 0; d < D; ++d) fz[a * D + d] = f[a][d][l];
+      A.ie[z] = IE[l];
+      ie_sum += IE[l];
+      A.vol[z] = V[l];
+      A.p[z] = P[l];
+      A.q[z] = Q[l];
+      A.c[z] = cs[l];
+    }
   }
   if (dt_min < R.dt_min) R.dt_min = dt_min;
   R.ie_sum += ie_sum;

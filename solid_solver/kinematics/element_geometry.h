@@ -32,8 +32,10 @@ struct ElemTraits<3> {
                                      {-1, 1, -1, 1, 1, -1, 1, -1}};
 };
 
-// Computes B[a][d] and returns the volume (area x unit thickness in 2D).
-inline double element_b_matrix(const double (&x)[4][2], double (&B)[4][2]) {
+// Computes B[a][d] and returns the volume (area x unit thickness in 2D). T is double or a batch of elements
+// (forces/lanes.h), with the same operations in the same order either way.
+template <class T>
+inline T element_b_matrix(const T (&x)[4][2], T (&B)[4][2]) {
   for (int a = 0; a < 4; ++a) {
     const int an = (a + 1) & 3, ap = (a + 3) & 3;
     B[a][0] = 0.5 * (x[an][1] - x[ap][1]);
@@ -43,32 +45,33 @@ inline double element_b_matrix(const double (&x)[4][2], double (&B)[4][2]) {
   return 0.5 * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) - (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]));
 }
 
-inline double element_b_matrix(const double (&x)[8][3], double (&B)[8][3]) {
+template <class T>
+inline T element_b_matrix(const T (&x)[8][3], T (&B)[8][3]) {
   static constexpr int face[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
                                      {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
   static constexpr double fxi[4] = {-1, 1, 1, -1}, feta[4] = {-1, -1, 1, 1};
-  for (int a = 0; a < 8; ++a) B[a][0] = B[a][1] = B[a][2] = 0.0;
+  for (int a = 0; a < 8; ++a) B[a][0] = B[a][1] = B[a][2] = T{};
   for (int f = 0; f < 6; ++f) {
-    const double* p1 = x[face[f][0]];
-    const double* p2 = x[face[f][1]];
-    const double* p3 = x[face[f][2]];
-    const double* p4 = x[face[f][3]];
-    double g1[3], g2[3], h[3];
+    const T* p1 = x[face[f][0]];
+    const T* p2 = x[face[f][1]];
+    const T* p3 = x[face[f][2]];
+    const T* p4 = x[face[f][3]];
+    T g1[3], g2[3], h[3];
     for (int d = 0; d < 3; ++d) {
       g1[d] = -p1[d] + p2[d] + p3[d] - p4[d];
       g2[d] = -p1[d] - p2[d] + p3[d] + p4[d];
       h[d] = p1[d] - p2[d] + p3[d] - p4[d];
     }
-    const double c0[3] = {g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]};
-    const double c1[3] = {g1[1] * h[2] - g1[2] * h[1], g1[2] * h[0] - g1[0] * h[2], g1[0] * h[1] - g1[1] * h[0]};
-    const double c2[3] = {h[1] * g2[2] - h[2] * g2[1], h[2] * g2[0] - h[0] * g2[2], h[0] * g2[1] - h[1] * g2[0]};
+    const T c0[3] = {g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]};
+    const T c1[3] = {g1[1] * h[2] - g1[2] * h[1], g1[2] * h[0] - g1[0] * h[2], g1[0] * h[1] - g1[1] * h[0]};
+    const T c2[3] = {h[1] * g2[2] - h[2] * g2[1], h[2] * g2[0] - h[0] * g2[2], h[0] * g2[1] - h[1] * g2[0]};
     for (int i = 0; i < 4; ++i) {
-      double* b = B[face[f][i]];
+      T* b = B[face[f][i]];
       const double s1 = fxi[i] * (1.0 / 3.0), s2 = feta[i] * (1.0 / 3.0);
       for (int d = 0; d < 3; ++d) b[d] += 0.0625 * (c0[d] + s1 * c1[d] + s2 * c2[d]);
     }
   }
-  double v = 0.0;
+  T v{};
   for (int a = 0; a < 8; ++a) v += B[a][0] * x[a][0] + B[a][1] * x[a][1] + B[a][2] * x[a][2];
   return v * (1.0 / 3.0);
 }

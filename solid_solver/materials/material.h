@@ -1,10 +1,13 @@
 // Material models of a block: an EOS for the pressure and an optional strength model.
-// Plain structs with inline evaluation: they are called once per element per cycle.
+// Plain structs with inline evaluation: they are called once per element per cycle, on one element
+// (double) or on a batch of elements (lanes::Lanes), branch-free so that a batch gives the scalar bits.
 #pragma once
 
 #include <cmath>
 #include <limits>
 #include <string>
+
+#include "solid_solver/forces/lanes.h"
 
 namespace cosim::solid {
 
@@ -13,18 +16,20 @@ enum class EosKind { IdealGas, LinearElastic, MieGruneisen };
 // Ideal gas (docs/methods.md §7.1): p = (gamma-1) rho e, c^2 = gamma p / rho.
 struct IdealGasEos {
   double gamma;
-  void eval(double rho, double e, double& p, double& c2) const {
+  template <class T>
+  void eval(T rho, T e, T& p, T& c2) const {
     p = (gamma - 1.0) * rho * e;
-    c2 = gamma * std::max(p, 0.0) / rho;
+    c2 = gamma * lanes::max_zero(p) / rho;
   }
 };
 
 // Linear elastic bulk response: p = K (rho/rho_ref - 1), c^2 = K / rho_ref (energy independent).
 struct LinearElasticEos {
   double bulk_modulus, rho_ref;
-  void eval(double rho, double /*e*/, double& p, double& c2) const {
+  template <class T>
+  void eval(T rho, T /*e*/, T& p, T& c2) const {
     p = bulk_modulus * (rho / rho_ref - 1.0);
-    c2 = bulk_modulus / rho_ref;
+    c2 = lanes::like(rho, bulk_modulus / rho_ref);
   }
 };
 
@@ -34,21 +39,21 @@ struct LinearElasticEos {
 //   c^2 = p_H' - Gamma0 rho0 e_H' + Gamma0 rho0 p / rho^2.
 struct MieGruneisenEos {
   double rho0, c0, s, gamma0;
-  void eval(double rho, double e, double& p, double& c2) const {
-    const double eta = 1.0 - rho0 / rho;
+  template <class T>
+  void eval(T rho, T e, T& p, T& c2) const {
+    const T eta = 1.0 - rho0 / rho;
     const double k0 = rho0 * c0 * c0;
-    const double deta = rho0 / (rho * rho);  // d eta / d rho
-    double pH, dpH;
-    if (eta > 0.0) {
-      const double den = 1.0 - s * eta;
-      pH = k0 * eta / (den * den);
-      dpH = k0 * (1.0 + s * eta) / (den * den * den) * deta;
-    } else {
-      pH = k0 * eta;
-      dpH = k0 * deta;
-    }
-    const double eH = pH * eta / (2.0 * rho0);
-    const double deH = (dpH * eta + pH * deta) / (2.0 * rho0);
+    const T deta = rho0 / (rho * rho);  // d eta / d rho
+    // Both branches are evaluated and one is selected (compression or tension).
+    const T den = 1.0 - s * eta;
+    const T pH_c = k0 * eta / (den * den);
+    const T dpH_c = k0 * (1.0 + s * eta) / (den * den * den) * deta;
+    const T pH_t = k0 * eta;
+    const T dpH_t = k0 * deta;
+    const T pH = eta > 0.0 ? pH_c : pH_t;
+    const T dpH = eta > 0.0 ? dpH_c : dpH_t;
+    const T eH = pH * eta / (2.0 * rho0);
+    const T deH = (dpH * eta + pH * deta) / (2.0 * rho0);
     const double g = gamma0 * rho0;
     p = pH + g * (e - eH);
     c2 = dpH - g * deH + g * p / (rho * rho);
