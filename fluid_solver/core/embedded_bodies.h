@@ -136,6 +136,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   std::size_t interior_cells() const override { return inner_->interior_cells(); }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
   double traffic_bytes_per_cell_update() const override { return inner_->traffic_bytes_per_cell_update(); }
+  void set_pass_profiling(bool on) override { inner_->set_pass_profiling(on); }
+  PassTimes pass_times() const override { return inner_->pass_times(); }
   // The bodies move with the flow's steps: their vertices belong to the state.
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);

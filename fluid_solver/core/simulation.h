@@ -13,6 +13,7 @@
 
 #include "common/checkpoint/part_file.h"
 #include "fluid_solver/core/embedded_state.h"
+#include "fluid_solver/core/pass_profile.h"
 #include "fluid_solver/core/scene.h"
 
 namespace cosim::fluid {
@@ -71,6 +72,9 @@ class FluidSimulation {
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
   // Bytes a time step reads and writes per cell in its passes over the grid (the benchmark's roofline; solver.h).
   virtual double traffic_bytes_per_cell_update() const = 0;
+  // Per-pass clocks (pass_profile.h): switching them on or off zeroes them; pass_times() sums the threads.
+  virtual void set_pass_profiling(bool on) = 0;
+  virtual PassTimes pass_times() const = 0;
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state
   // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
   virtual void set_embedded(EmbeddedState state, bool second_order) = 0;

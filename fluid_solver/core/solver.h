@@ -25,6 +25,7 @@
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/initial_state.h"
 #include "fluid_solver/core/layout.h"
+#include "fluid_solver/core/pass_profile.h"
 #include "fluid_solver/core/reconstruction.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/physics/exchange_row.h"
@@ -110,6 +111,17 @@ class Solver final : public FluidSimulation {
       throw std::invalid_argument("embedded state: kind array does not match the grid");
   }
   const EmbeddedState& embedded() const override { return emb_; }
+
+  void set_pass_profiling(bool on) override {
+    profiling_ = on;
+    for (auto& sc : scratch_) sc.pass = {};
+  }
+  PassTimes pass_times() const override {
+    PassTimes t;
+    for (const auto& sc : scratch_)
+      for (int p = 0; p < kPassCount; ++p) t.seconds[p] += sc.pass.seconds[p];
+    return t;
+  }
   std::vector<double> embedded_categories() const override {
     std::vector<double> out;
     out.reserve(g_.interior_count());
@@ -149,7 +161,10 @@ class Solver final : public FluidSimulation {
       stage(dt, 1.0 / 3.0, 2.0 / 3.0);
     }
     if constexpr (NP == 2) exchange_sources(dt);
-    if (emb_.active) store_ghost_states();
+    if (emb_.active) {
+      PassClock clk(pass_acc(Pass::Boundaries));
+      store_ghost_states();
+    }
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     t_ += dt;
     ++steps_;
@@ -264,14 +279,20 @@ class Solver final : public FluidSimulation {
   }
 
  private:
-  // Calls f(base, len, acc) for every interior x-row in parallel; acc is max-reduced into result.
+  // This thread's clock of pass p when profiling, else null (PassClock then reads no clock).
+  double* pass_acc(Pass p) {
+    return profiling_ ? &scratch_[static_cast<std::size_t>(omp_get_thread_num())].pass[p] : nullptr;
+  }
+
+  // Calls f(base, len, acc) for every interior x-row in parallel, timed as pass p; acc is max-reduced into result.
   template <class F>
-  void for_each_row(F&& f, double& result) {
+  void for_each_row(Pass p, F&& f, double& result) {
     const int rows = g_.n[1] * g_.n[2];
     double r = result;
 #pragma omp parallel for schedule(static) reduction(max : r)
     for (int row = 0; row < rows; ++row) {
       const int j = row % g_.n[1], k = row / g_.n[1];
+      PassClock clk(pass_acc(p));
       f(g_.index(0, j, k), g_.n[0], r);
     }
     result = r;
@@ -280,10 +301,13 @@ class Solver final : public FluidSimulation {
   void stage(double dt, double a, double b) {
     compute_primitives(U_);
     primitives_valid_ = false;
-    bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
-    if (emb_.active) {
-      fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
-      fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
+    {
+      PassClock clk(pass_acc(Pass::Boundaries));
+      bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
+      if (emb_.active) {
+        fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
+        fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
+      }
     }
     residual();
     // Boundary inflow of this stage, with the stage's Runge-Kutta weights: U - U0 = b (U_prev - U0 + dt R).
@@ -302,6 +326,7 @@ class Solver final : public FluidSimulation {
     }
     double dummy = 0;
     for_each_row(
+        Pass::Update,
         [&](std::size_t base, int len, double&) {
           for (int v = 0; v < ncons_; ++v) {
             double* u = Uv[v] + base;
@@ -323,6 +348,7 @@ class Solver final : public FluidSimulation {
             }
           }
           if constexpr (NP == 2) {
+            PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Update));
             relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
                         scene_.exchange.pressure_relaxation);
           }
@@ -365,6 +391,7 @@ class Solver final : public FluidSimulation {
     double* face1 = nullptr;
     double* exchange = nullptr;  // kExchangeScratch rows of cells: exchange_row's scratch, max_wave_rate's rates
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
+    PassTimes pass;                               // seconds per pass of this thread (profiling on)
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
   static std::size_t high_cell(const WallFace& f) { return f.solid_on_high_side ? f.solid_cell : f.fluid_cell; }
@@ -474,6 +501,7 @@ class Solver final : public FluidSimulation {
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
+  bool profiling_ = false;  // per-pass clocks (set_pass_profiling)
   // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.
   std::array<double, NP> trace_{};
   // A dispersed phase with a granular temperature (docs/methods.md §2.9): the last conservative slot holds its

@@ -54,6 +54,7 @@ inline void Solver<DIM, NP, FK>::exchange_sources(double dt) {
       return;
     }
   for_each_row(
+      Pass::Exchange,
       [&](std::size_t base, int len, double&) {
         for (int i = 0; i < len; ++i) {
           const std::size_t c = base + i;
@@ -72,7 +73,10 @@ inline void Solver<DIM, NP, FK>::exchange_sources(double dt) {
         }
         // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
         // (vectorised row pass).
-        if (ex.pressure_relaxation) relax_cells(base, len, false, true);
+        if (ex.pressure_relaxation) {
+          PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Exchange));
+          relax_cells(base, len, false, true);
+        }
       },
       dummy);
 }
@@ -92,10 +96,14 @@ template <bool DRAG, bool HEAT, bool GRAN>
 inline void Solver<DIM, NP, FK>::exchange_rows(double dt) {
   double dummy = 0;
   for_each_row(
+      Pass::Exchange,
       [&](std::size_t base, int len, double&) {
         exchange_row<DIM, DRAG, HEAT, GRAN>(len, two_phase_row(base), eos_, scene_.exchange, dt,
                                             scratch_[static_cast<std::size_t>(omp_get_thread_num())].exchange);
-        if (scene_.exchange.pressure_relaxation) relax_cells(base, len, false, true);
+        if (scene_.exchange.pressure_relaxation) {
+          PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Exchange));
+          relax_cells(base, len, false, true);
+        }
       },
       dummy);
 }

@@ -46,6 +46,7 @@ inline void Solver<DIM, NP, FK>::compute_primitives(const FieldArray& U) {
   for (int v = 0; v < ncons_; ++v) Uc[v] = U.var(v);
   for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
   for_each_row(
+      Pass::Primitives,
       [&](std::size_t base, int len, double& acc) {
         // The row's views in locals: loop-invariant to the compiler, so that the loop vectorises.
         const double* uc[Lay::kCons];
@@ -139,6 +140,7 @@ inline double Solver<DIM, NP, FK>::max_wave_rate() {
   const ParticleStress& ps = scene_.exchange.particle_stress;
   const GranularGas& gr = scene_.exchange.granular;
   for_each_row(
+      Pass::WaveRate,
       [&](std::size_t base, int len, double& acc) {
         const double* w[Lay::kPrim];  // the row's views in locals, so that the loop vectorises
         for (int v = 0; v < Lay::kPrim; ++v) w[v] = v < nprim_ ? W_.var(v) + base : nullptr;

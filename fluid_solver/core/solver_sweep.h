@@ -20,17 +20,26 @@ inline void Solver<DIM, NP, FK>::sweep_impl() {
       Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
       const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
       // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
-      compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-      if (emb_.active) {
-        fix_side_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-        mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
+      {
+        PassClock clk(pass_acc(Pass::Reconstruction));
+        compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+        if (emb_.active) {
+          fix_side_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
+          mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
+        }
       }
-      compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
+      {
+        PassClock clk(pass_acc(Pass::Fluxes));
+        compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
+      }
       const auto blocked = [&](bool high_side) {
-        if (emb_.active)
+        if (emb_.active) {
+          PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
           blocked_face_fluxes<D, RM>(high_side, base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.mini, sc.face1,
                                      sc.faces, flen);
+        }
       };
+      PassClock clk(pass_acc(Pass::Apply));
       add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
       add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
       blocked(true);
@@ -52,21 +61,33 @@ inline void Solver<DIM, NP, FK>::sweep_impl() {
       auto row_base = [&](int layer) { return D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer); };
       // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer.
       int prev = 0;
-      compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
-      if (emb_.active) fix_side_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
+      {
+        PassClock clk(pass_acc(Pass::Reconstruction));
+        compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
+        if (emb_.active) fix_side_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
+      }
       for (int layer = a; layer <= b; ++layer) {
         const std::size_t base = row_base(layer);
-        compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
-        if (emb_.active) {
-          fix_side_edges<D, RM>(base, n0, sc.edges[1 - prev]);
-          mirror_wall_faces<D>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0);
+        {
+          PassClock clk(pass_acc(Pass::Reconstruction));
+          compute_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+          if (emb_.active) {
+            fix_side_edges<D, RM>(base, n0, sc.edges[1 - prev]);
+            mirror_wall_faces<D>(base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0);
+          }
         }
-        compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
+        {
+          PassClock clk(pass_acc(Pass::Fluxes));
+          compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
+        }
         const auto blocked = [&](bool high_side) {
-          if (emb_.active)
+          if (emb_.active) {
+            PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
             blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.mini, sc.face1,
                                        sc.faces, flen);
+          }
         };
+        PassClock clk(pass_acc(Pass::Apply));
         if (layer == 0)
           for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base + f, 1);
         if (layer == nD)
