@@ -5,8 +5,9 @@
 //      ghost/solid-cut cells from image points (paper step 3);
 //   3. residual: for each direction, face rows of MUSCL-reconstructed states (with mirrored
 //      solid-side states at embedded wall faces, steps 5-6) -> DEM face contributions -> applied
-//      to the two neighbouring cell rows;
-//   4. Runge-Kutta combination of the flow cells, then instantaneous relaxation (two phases).
+//      to the two neighbouring cell rows; the transverse directions first, x last;
+//   4. Runge-Kutta combination of the flow cells, then instantaneous relaxation (two phases), and step 1 of
+//      the next stage: each row as soon as its x sweep has finished it, while it is in cache (update_row).
 // Finite-rate exchange (drag, heat) is applied once per step after the hyperbolic step.
 // This file holds the class, its data, the step structure and the FluidSimulation interface; the member functions of
 // the physics steps are defined in the solver_*.h headers included at its end.
@@ -66,6 +67,7 @@ class Solver final : public FluidSimulation {
     if constexpr (NP == 2)
       if (gran_)  // at rest relative to its mean motion: all of E - u^2/2 is the material's
         for (std::size_t c = 0; c < g_.total; ++c) U_.var(Lay::heat)[c] = U_.var(Lay::energy(1))[c] - kinetic(U_, 1, c);
+    U0_ = U_;  // U and U0 trade places each step: their cells outside the interior rows must agree
   }
 
   const FluidScene& scene() const override { return scene_; }
@@ -73,18 +75,25 @@ class Solver final : public FluidSimulation {
   long steps() const override { return steps_; }
   std::size_t interior_cells() const override { return g_.interior_count(); }
   // The step's passes over the grid, in doubles per cell, each array read or written once per pass (rows of
-  // edge states and face fluxes stay in cache; writes counted once, as STREAM counts them): stable_dt's
-  // primitives (read U, write W) and wave rate (read W); per Runge-Kutta stage the primitives (but the first,
-  // which stable_dt's serve), the x sweep (read W, write R), each further sweep (read W, read and write R) and
-  // the update (read U, R and U0 or write U0, write U; the relaxations fused into it); with drag or heat
-  // exchange one more pass (read and write U). Ghost layers, boundary and embedded-body work are not counted.
+  // edge states and face fluxes stay in cache; a write counted once, as STREAM counts it; the primitives'
+  // sound-speed slots are never touched): stable_dt's primitives (read U, write W) unless the last stage left
+  // them, and its wave rate (read W); per Runge-Kutta stage the primitives unless the stage before computed
+  // them row by row, the first transverse sweep (read W, write R), each further one (read W, read and write R),
+  // and the x sweep with the update (read W, R and U0, read U but in the first stage, write U and R, in 1D no R
+  // at all; write W where it computes the next primitives); with drag or heat exchange one more pass (read and
+  // write U). Ghost layers, boundary and embedded-body work are not counted.
   double traffic_bytes_per_cell_update() const override {
     const int stages = scene_.integrator == TimeIntegrator::RK2 ? 2 : 3;
-    const double nc = ncons_, np = nprim_;
-    double doubles = (nc + np) + np + (stages - 1) * (nc + np);
-    doubles += stages * ((np + nc) + (DIM - 1) * (np + 2 * nc) + 4 * nc);
-    const auto& ex = scene_.exchange;
-    if (NP == 2 && (ex.velocity == VelocityRelaxation::Drag || ex.heat_transfer || gran_)) doubles += 2 * nc;
+    const double nc = ncons_, np = nprim_ - NP;
+    const bool fuse = !emb_.active, fuse_last = fuse && !(NP == 2 && exchange_changes_state());
+    double doubles = (fuse_last ? 0.0 : nc + np) + np;
+    for (int s = 0; s < stages; ++s) {
+      const bool fused_here = s + 1 < stages ? fuse : fuse_last;
+      if (s > 0 && !fuse) doubles += nc + np;
+      if (DIM > 1) doubles += (np + nc) + (DIM - 2) * (np + 2 * nc);
+      doubles += np + (DIM > 1 ? 2 * nc : 0.0) + nc + (s > 0 ? nc : 0.0) + nc + (fused_here ? np : 0.0);
+    }
+    if (NP == 2 && exchange_changes_state()) doubles += 2 * nc;
     return 8.0 * doubles;
   }
 
@@ -132,7 +141,7 @@ class Solver final : public FluidSimulation {
   }
 
   double stable_dt() override {
-    compute_primitives(U_);
+    compute_primitives();
     double smax = 0.0;
     const bool dispersed = NP == 2 && scene_.exchange.dispersed, b3 = scene_.exchange.particle_stress.beta == 3.0;
     if (!dispersed) smax = max_wave_rate<false, false, 0>();
@@ -151,14 +160,19 @@ class Solver final : public FluidSimulation {
   double max_wave_rate();
 
   void advance(double dt) override {
-    step_inflow_.fill(0.0);  // the first stage (a = 0) keeps U in U0 as it updates it
+    step_inflow_.fill(0.0);
+    // The stages compute the next stage's primitives row by row, but with an embedded boundary (whose wall
+    // faces read the primitives of other rows during a sweep); the last stage also where exchange or ghost
+    // states change U after it. Otherwise the next step's stable_dt finds its primitives ready.
+    const bool fuse = !emb_.active;
+    const bool fuse_last = fuse && !(NP == 2 && exchange_changes_state());
     if (scene_.integrator == TimeIntegrator::RK2) {
-      stage(dt, 0.0, 1.0);
-      stage(dt, 0.5, 0.5);
+      stage(dt, 0.0, 1.0, fuse_last);
+      stage(dt, 0.5, 0.5, fuse_last);
     } else {
-      stage(dt, 0.0, 1.0);
-      stage(dt, 0.75, 0.25);
-      stage(dt, 1.0 / 3.0, 2.0 / 3.0);
+      stage(dt, 0.0, 1.0, fuse);
+      stage(dt, 0.75, 0.25, fuse);
+      stage(dt, 1.0 / 3.0, 2.0 / 3.0, fuse_last);
     }
     if constexpr (NP == 2) exchange_sources(dt);
     if (emb_.active) {
@@ -168,7 +182,6 @@ class Solver final : public FluidSimulation {
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     t_ += dt;
     ++steps_;
-    primitives_valid_ = false;
   }
 
   PhaseFields phase_fields(int k) const override {
@@ -251,6 +264,7 @@ class Solver final : public FluidSimulation {
       throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}", r.path().string(),
                                            r.integer("fluid.conserved_vars"), ncons_));
     U_.data = r.doubles("fluid.conserved", U_.data.size());
+    U0_.data = U_.data;
     const std::vector<double> in = r.doubles("fluid.boundary_inflow", inflow_.size());
     std::copy(in.begin(), in.end(), inflow_.begin());
     t_ = r.scalar("fluid.time");
@@ -279,6 +293,8 @@ class Solver final : public FluidSimulation {
   }
 
  private:
+  struct Scratch;  // per-thread row buffers (below)
+
   // This thread's clock of pass p when profiling, else null (PassClock then reads no clock).
   double* pass_acc(Pass p) {
     return profiling_ ? &scratch_[static_cast<std::size_t>(omp_get_thread_num())].pass[p] : nullptr;
@@ -298,9 +314,11 @@ class Solver final : public FluidSimulation {
     result = r;
   }
 
-  void stage(double dt, double a, double b) {
-    compute_primitives(U_);
-    primitives_valid_ = false;
+  // One Runge-Kutta stage, U <- a U0 + b (U + dt R(U)): the transverse sweeps assign and add their face fluxes
+  // into R, the x sweep adds its own and hands each finished row to update_row.
+  void stage(double dt, double a, double b, bool fuse_primitives) {
+    compute_primitives();
+    primitives_valid_ = primitives_bad_ = false;
     {
       PassClock clk(pass_acc(Pass::Boundaries));
       bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
@@ -309,70 +327,84 @@ class Solver final : public FluidSimulation {
         fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
       }
     }
-    residual();
+    if (a == 0.0) std::swap(U_, U0_);  // U0: the step's start state; update_row writes U's rows anew
+    for (auto& sc : scratch_) {
+      sc.boundary.fill(0.0);
+      sc.bad = 0.0;
+    }
+    const auto no_rows = [](Scratch&, std::size_t, int) {};
+    if constexpr (DIM > 1) sweep<1>(no_rows);
+    if constexpr (DIM > 2) sweep<2>(no_rows);
+    sweep<0>([&](Scratch& sc, std::size_t base, int len) { update_row(sc, base, len, dt, a, b, fuse_primitives); });
+    double bad = 0.0;
+    for (const auto& sc : scratch_) bad = std::max(bad, sc.bad);
+    if (fuse_primitives) {
+      primitives_valid_ = true;
+      primitives_bad_ = bad > 0.0;  // reported where the next stage or stable_dt asks for them
+    }
     // Boundary inflow of this stage, with the stage's Runge-Kutta weights: U - U0 = b (U_prev - U0 + dt R).
     for (std::size_t i = 0; i < step_inflow_.size(); ++i) {
       double f = 0;
       for (const auto& sc : scratch_) f += sc.boundary[i];
       step_inflow_[i] = b * (step_inflow_[i] + dt * f);
     }
-    double* Uv[Lay::kCons];
-    double* U0v[Lay::kCons];
-    const double* Rv[Lay::kCons];
-    for (int v = 0; v < ncons_; ++v) {
-      Uv[v] = U_.var(v);
-      U0v[v] = U0_.var(v);
-      Rv[v] = R_.var(v);
-    }
-    double dummy = 0;
-    for_each_row(
-        Pass::Update,
-        [&](std::size_t base, int len, double&) {
-          for (int v = 0; v < ncons_; ++v) {
-            double* u = Uv[v] + base;
-            double* u0 = U0v[v] + base;
-            const double* r = Rv[v] + base;
-            if (a == 0.0) std::copy(u, u + len, u0);  // the step's start state, for the later stages
-            if (emb_.active) {
-              // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
-              // the interior of a body is never read (fused here: no extra pass over the grid).
-              const std::uint8_t* kind = emb_.kind.data() + base;
-              for (int i = 0; i < len; ++i) {
-                const double un = a * u0[i] + b * (u[i] + dt * r[i]);
-                u[i] = is_flow_cell(kind[i]) ? un : u[i];
-              }
-            } else if (a == 0.0) {
-              for (int i = 0; i < len; ++i) u[i] += dt * r[i];
-            } else {
-              for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+  }
+
+  // A row of cells that the x sweep has finished: the Runge-Kutta combination of its flow cells (at a = 0, U0
+  // holds the current state and every cell of the row is written), the instantaneous relaxations (two phases),
+  // and, with `fuse_primitives`, its primitives for the next stage.
+  void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives) {
+    {
+      PassClock clk(pass_acc(Pass::Update));
+      const std::uint8_t* kind = emb_.active ? emb_.kind.data() + base : nullptr;
+      for (int v = 0; v < ncons_; ++v) {
+        double* u = U_.var(v) + base;
+        const double* u0 = U0_.var(v) + base;
+        const double* r = R_.var(v) + base;
+        if (kind) {
+          // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
+          // the interior of a body is never read.
+          if (a == 0.0)
+            for (int i = 0; i < len; ++i) u[i] = is_flow_cell(kind[i]) ? u0[i] + dt * r[i] : u0[i];
+          else
+            for (int i = 0; i < len; ++i) {
+              const double un = a * u0[i] + b * (u[i] + dt * r[i]);
+              u[i] = is_flow_cell(kind[i]) ? un : u[i];
             }
-          }
-          if constexpr (NP == 2) {
-            PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Update));
-            relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
-                        scene_.exchange.pressure_relaxation);
-          }
-        },
-        dummy);
-  }
-
-  void residual() {
-    for (auto& sc : scratch_) sc.boundary.fill(0.0);
-    sweep<0>();  // assigns R (no zeroing pass)
-    if constexpr (DIM > 1) sweep<1>();
-    if constexpr (DIM > 2) sweep<2>();
-  }
-
-  template <int D>
-  void sweep() {
-    switch (mode_) {
-      case ReconMode::First: sweep_impl<D, ReconMode::First>(); break;
-      case ReconMode::Minmod: sweep_impl<D, ReconMode::Minmod>(); break;
-      case ReconMode::VanLeer: sweep_impl<D, ReconMode::VanLeer>(); break;
-      case ReconMode::MC: sweep_impl<D, ReconMode::MC>(); break;
+        } else if (a == 0.0) {
+          for (int i = 0; i < len; ++i) u[i] = u0[i] + dt * r[i];
+        } else {
+          for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+        }
+      }
+    }
+    if constexpr (NP == 2) {
+      PassClock clk(pass_acc(Pass::Relaxation));
+      relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
+                  scene_.exchange.pressure_relaxation);
+    }
+    if (fuse_primitives) {
+      PassClock clk(pass_acc(Pass::Primitives));
+      sc.bad = std::max(sc.bad, primitives_row(base, len));
     }
   }
 
+  // Drag, heat exchange or a granular temperature: exchange_sources changes U after the stages.
+  bool exchange_changes_state() const {
+    const auto& ex = scene_.exchange;
+    return ex.velocity == VelocityRelaxation::Drag || ex.heat_transfer || gran_;
+  }
+
+  // Sweep along D with the scene's reconstruction; `rows` (Scratch&, base, len) gets each finished x row.
+  template <int D, class RowDone>
+  void sweep(RowDone&& rows) {
+    switch (mode_) {
+      case ReconMode::First: sweep_impl<D, ReconMode::First>(rows); break;
+      case ReconMode::Minmod: sweep_impl<D, ReconMode::Minmod>(rows); break;
+      case ReconMode::VanLeer: sweep_impl<D, ReconMode::VanLeer>(rows); break;
+      case ReconMode::MC: sweep_impl<D, ReconMode::MC>(rows); break;
+    }
+  }
   // Face-row buffer layout: per phase (mass, mom[DIM], energy) fluxes, then for NP = 2 the
   // phase-0 Lagrangian parts into the left cell (3) and into the right cell (3), and the material-energy flux of a
   // dispersed phase with a granular temperature.
@@ -391,6 +423,7 @@ class Solver final : public FluidSimulation {
     double* face1 = nullptr;
     double* exchange = nullptr;  // kExchangeScratch rows of cells: exchange_row's scratch, max_wave_rate's rates
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
+    double bad = 0.0;                             // 1 when update_row's primitives found an inadmissible cell
     PassTimes pass;                               // seconds per pass of this thread (profiling on)
   };
   std::size_t edge_row_len() const { return static_cast<std::size_t>(g_.n[0] + 2); }
@@ -416,8 +449,9 @@ class Solver final : public FluidSimulation {
   double material_energy(const FieldArray& U, int k, std::size_t c) const;
   double granular_energy(const FieldArray& U, std::size_t c) const;
   double granular_per_mass(const FieldArray& U, std::size_t c) const;
-  void compute_primitives(const FieldArray& U);
-  [[noreturn]] void report_bad_cell(const FieldArray& U) const;
+  void compute_primitives();
+  double primitives_row(std::size_t base, int len);
+  [[noreturn]] void report_bad_cell() const;
 
   // solver_reconstruction.h: MUSCL slopes and edge states.
   template <ReconMode RM>
@@ -429,8 +463,8 @@ class Solver final : public FluidSimulation {
   double edge_alpha(const double* edges, int side, int e) const;
 
   // solver_sweep.h: directional sweeps, face-row fluxes, boundary inflow, residual application.
-  template <int D, ReconMode RM>
-  void sweep_impl();
+  template <int D, ReconMode RM, class RowDone>
+  void sweep_impl(RowDone& row_done);
   template <int D, ReconMode RM>
   void compute_faces(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                      double* buf, std::size_t flen);
@@ -496,7 +530,8 @@ class Solver final : public FluidSimulation {
   ReconMode mode_ = ReconMode::VanLeer;
   double t_ = 0.0;
   long steps_ = 0;
-  bool primitives_valid_ = false;
+  bool primitives_valid_ = false;  // W holds the primitives of U's interior (and primitives_bad_ if one fails)
+  bool primitives_bad_ = false;
   EmbeddedState emb_;
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)

@@ -35,75 +35,80 @@ inline double Solver<DIM, NP, FK>::granular_per_mass(const FieldArray& U, std::s
   return granular_energy(U, c) / U.var(Lay::mass(NP - 1))[c];
 }
 
-// Interior primitives from conservative U, and the x ghosts of the rows; throws StateError naming the first bad
-// cell.
+// Interior primitives of U, with the x ghosts of the rows; a state that fails the admissibility check throws
+// StateError naming the first bad cell. A no-op when the last stage computed them row by row (update_row), but
+// for the report of a bad state it found, made here, where the unfused pass would have made it.
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::compute_primitives(const FieldArray& U) {
-  if (primitives_valid_ && &U == &U_) return;
+inline void Solver<DIM, NP, FK>::compute_primitives() {
+  if (primitives_valid_) {
+    if (primitives_bad_) report_bad_cell();
+    return;
+  }
   double bad = 0.0;
-  const double* Uc[Lay::kCons];
-  double* Wp[Lay::kPrim];
-  for (int v = 0; v < ncons_; ++v) Uc[v] = U.var(v);
-  for (int v = 0; v < nprim_; ++v) Wp[v] = W_.var(v);
   for_each_row(
-      Pass::Primitives,
-      [&](std::size_t base, int len, double& acc) {
-        // The row's views in locals: loop-invariant to the compiler, so that the loop vectorises.
-        const double* uc[Lay::kCons];
-        double* wp[Lay::kPrim];
-        for (int v = 0; v < Lay::kCons; ++v) uc[v] = v < ncons_ ? Uc[v] + base : nullptr;
-        for (int v = 0; v < Lay::kPrim; ++v) wp[v] = v < nprim_ ? Wp[v] + base : nullptr;
-        double bad_row = 0.0;
-        // GRAN as a compile-time constant: a run-time select of the material energy does not vectorise.
-        const auto row = [&](auto gran_tag) {
-          constexpr bool gran = decltype(gran_tag)::value;
-#pragma GCC ivdep
-          for (int c = 0; c < len; ++c) {
-            double a0 = 1.0;
-            if constexpr (NP == 2) {
-              a0 = uc[Lay::alpha][c];
-              wp[Lay::palpha][c] = a0;
-              bad_row = (a0 > 0.0 && a0 < 1.0) ? bad_row : 1.0;
-            }
-            for (int k = 0; k < NP; ++k) {
-              const double a = k == 0 ? a0 : 1.0 - a0;
-              const double m = uc[Lay::mass(k)][c];
-              const double rho = m / a;
-              const double inv = 1.0 / m;
-              double q = 0;
-              for (int d = 0; d < DIM; ++d) {
-                const double u = uc[Lay::mom(k, d)][c] * inv;
-                wp[Lay::vel(k, d)][c] = u;
-                q += u * u;
-              }
-              double rhoe = uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
-              if constexpr (NP == 2)
-                if (k == 1 && gran) {  // its material energy apart, and k from what is left (§2.9)
-                  const double h = uc[Lay::heat][c] / a;
-                  wp[Lay::pgran][c] = (rhoe - h) / rho;
-                  rhoe = h;
-                }
-              const auto& e = eos_[k];
-              const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
-              const double c2 = e.gamma * (p + e.pinf) / rho;
-              wp[Lay::rho(k)][c] = rho;
-              wp[Lay::pres(k)][c] = p;
-              bad_row = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? bad_row : 1.0;  // also false for NaN
-            }
-          }
-        };
-        if (gran_) row(std::true_type{});
-        else row(std::false_type{});
-        acc = std::max(acc, bad_row);
-        bc_.fill_x_row(W_, base);  // the row's x ghosts while it is in cache (stage fills the others)
-      },
+      Pass::Primitives, [&](std::size_t base, int len, double& acc) { acc = std::max(acc, primitives_row(base, len)); },
       bad);
-  if (bad > 0.0) report_bad_cell(U);
-  if (&U == &U_) primitives_valid_ = true;
+  if (bad > 0.0) report_bad_cell();
+  primitives_valid_ = true;
+}
+
+// Primitives of one interior row of U into W, and the row's x ghosts while it is in cache (stage fills the
+// others); returns 1 when a cell of the row is inadmissible, else 0.
+template <int DIM, int NP, FluxKind FK>
+inline double Solver<DIM, NP, FK>::primitives_row(std::size_t base, int len) {
+  // The row's views in locals: loop-invariant to the compiler, so that the loop vectorises.
+  const double* uc[Lay::kCons];
+  double* wp[Lay::kPrim];
+  for (int v = 0; v < Lay::kCons; ++v) uc[v] = v < ncons_ ? U_.var(v) + base : nullptr;
+  for (int v = 0; v < Lay::kPrim; ++v) wp[v] = v < nprim_ ? W_.var(v) + base : nullptr;
+  double bad_row = 0.0;
+  // GRAN as a compile-time constant: a run-time select of the material energy does not vectorise.
+  const auto row = [&](auto gran_tag) {
+    constexpr bool gran = decltype(gran_tag)::value;
+#pragma GCC ivdep
+    for (int c = 0; c < len; ++c) {
+      double a0 = 1.0;
+      if constexpr (NP == 2) {
+        a0 = uc[Lay::alpha][c];
+        wp[Lay::palpha][c] = a0;
+        bad_row = (a0 > 0.0 && a0 < 1.0) ? bad_row : 1.0;
+      }
+      for (int k = 0; k < NP; ++k) {
+        const double a = k == 0 ? a0 : 1.0 - a0;
+        const double m = uc[Lay::mass(k)][c];
+        const double rho = m / a;
+        const double inv = 1.0 / m;
+        double q = 0;
+        for (int d = 0; d < DIM; ++d) {
+          const double u = uc[Lay::mom(k, d)][c] * inv;
+          wp[Lay::vel(k, d)][c] = u;
+          q += u * u;
+        }
+        double rhoe = uc[Lay::energy(k)][c] / a - 0.5 * rho * q;
+        if constexpr (NP == 2)
+          if (k == 1 && gran) {  // its material energy apart, and k from what is left (§2.9)
+            const double h = uc[Lay::heat][c] / a;
+            wp[Lay::pgran][c] = (rhoe - h) / rho;
+            rhoe = h;
+          }
+        const auto& e = eos_[k];
+        const double p = (e.gamma - 1.0) * (rhoe - rho * e.q) - e.gamma * e.pinf;
+        const double c2 = e.gamma * (p + e.pinf) / rho;
+        wp[Lay::rho(k)][c] = rho;
+        wp[Lay::pres(k)][c] = p;
+        bad_row = (rho > 0.0 && c2 > 0.0 && c2 < 1e300) ? bad_row : 1.0;  // also false for NaN
+      }
+    }
+  };
+  if (gran_) row(std::true_type{});
+  else row(std::false_type{});
+  bc_.fill_x_row(W_, base);
+  return bad_row;
 }
 
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::report_bad_cell(const FieldArray& U) const {
+inline void Solver<DIM, NP, FK>::report_bad_cell() const {
+  const FieldArray& U = U_;
   for (int kk = 0; kk < g_.n[2]; ++kk)
     for (int j = 0; j < g_.n[1]; ++j)
       for (int i = 0; i < g_.n[0]; ++i) {

@@ -6,9 +6,11 @@
 
 namespace cosim::fluid {
 
+// Sweep along D over all face rows. The first transverse sweep (y; x in 1D) assigns R, the others add to it;
+// the x sweep comes last and hands every row it has finished to `row_done`.
 template <int DIM, int NP, FluxKind FK>
-template <int D, ReconMode RM>
-inline void Solver<DIM, NP, FK>::sweep_impl() {
+template <int D, ReconMode RM, class RowDone>
+inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
   const double inv_dx = 1.0 / g_.dx[D];
   const std::size_t s = static_cast<std::size_t>(g_.stride[D]);
   const int n0 = g_.n[0];
@@ -39,13 +41,16 @@ inline void Solver<DIM, NP, FK>::sweep_impl() {
                                      sc.faces, flen);
         }
       };
-      PassClock clk(pass_acc(Pass::Apply));
-      add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
-      add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
-      blocked(true);
-      apply_right<D, true>(sc.faces, flen, base, 0, n0, inv_dx);
-      blocked(false);
-      apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
+      {
+        PassClock clk(pass_acc(Pass::Apply));
+        add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
+        add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
+        blocked(true);
+        apply_right<D, DIM == 1>(sc.faces, flen, base, 0, n0, inv_dx);
+        blocked(false);
+        apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
+      }
+      row_done(sc, base, n0);
     }
   } else {
     const int nD = g_.n[D];
@@ -94,7 +99,7 @@ inline void Solver<DIM, NP, FK>::sweep_impl() {
           for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base - s + f, -1);
         if (layer < b) {
           blocked(true);
-          apply_right<D>(sc.faces, flen, base, 0, n0, inv_dx);
+          apply_right<D, D == 1>(sc.faces, flen, base, 0, n0, inv_dx);
         }
         if (layer > a) {
           blocked(false);
@@ -217,8 +222,8 @@ inline void Solver<DIM, NP, FK>::add_boundary_flux(Scratch& sc, const double* bu
     for (int q = 0; q < 2 + DIM; ++q) sc.boundary[fvar_flux(k, q)] += area * buf[fvar_flux(k, q) * flen + f];
 }
 
-// Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f. The x sweep comes first
-// and assigns instead (ASSIGN), which saves a pass that zeroes the residual.
+// Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f. The first sweep assigns instead
+// (ASSIGN), which saves a pass that zeroes the residual.
 template <int DIM, int NP, FluxKind FK>
 template <int D, bool ASSIGN>
 inline void Solver<DIM, NP, FK>::apply_right(const double* buf, std::size_t flen, std::size_t rbase, int f0, int f1,
