@@ -422,6 +422,7 @@ class Solver final : public FluidSimulation {
     double* mini = nullptr;
     double* face1 = nullptr;
     double* exchange = nullptr;  // kExchangeScratch rows of cells: exchange_row's scratch, max_wave_rate's rates
+    double* trace = nullptr;     // 2 + DIM rows of faces: trace_faces' fluxes
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
     double bad = 0.0;                             // 1 when update_row's primitives found an inadmissible cell
     PassTimes pass;                               // seconds per pass of this thread (profiling on)
@@ -434,13 +435,15 @@ class Solver final : public FluidSimulation {
     scratch_.resize(static_cast<std::size_t>(omp_get_max_threads()));
     for (auto& sc : scratch_) {
       const std::size_t xsize = static_cast<std::size_t>(kExchangeScratch) * static_cast<std::size_t>(g_.n[0]);
-      sc.data.assign(fsize + 3 * esize + kFaceVars + xsize, 0.0);
+      const std::size_t tsize = static_cast<std::size_t>(2 + DIM) * flen;
+      sc.data.assign(fsize + 3 * esize + kFaceVars + xsize + tsize, 0.0);
       sc.faces = sc.data.data();
       sc.edges[0] = sc.faces + fsize;
       sc.edges[1] = sc.edges[0] + esize;
       sc.mini = sc.edges[1] + esize;
       sc.face1 = sc.mini + esize;
       sc.exchange = sc.face1 + kFaceVars;
+      sc.trace = sc.exchange + xsize;
     }
   }
 
@@ -488,8 +491,8 @@ class Solver final : public FluidSimulation {
   void particle_stress_row(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                            double* buf, std::size_t flen) const;
   template <int D>
-  void trace_faces(int k, int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
-                   double* const* fv) const;
+  void trace_faces(int k, int len, const double* const* lv, const double* const* rv, const double* al,
+                   const double* ar, double* const* fv, double* tbuf, std::size_t flen) const;
   template <int D, ReconMode RM>
   Lagrangian add_intra_cell(const PhaseState<DIM> (&R)[NP], double aR, const double* right_edges, int e,
                             Lagrangian right) const;

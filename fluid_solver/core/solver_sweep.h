@@ -154,7 +154,9 @@ inline void Solver<DIM, NP, FK>::compute_faces(int len, const double* left_edges
       }
       if (lowmach) aufs_row<DIM, D, true>(len, lv, rv, fv, eos_[k], cutoff);
       else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[k], cutoff);
-      if constexpr (NP == 2) trace_faces<D>(k, len, left_edges, left_off, right_edges, right_off, fv);
+      if constexpr (NP == 2)
+        trace_faces<D>(k, len, lv, rv, left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off,
+                       right_edges + Lay::palpha * elen + right_off, fv, scratch_[static_cast<std::size_t>(omp_get_thread_num())].trace, flen);
     }
     if constexpr (NP == 2) {
       // Weight by the same-phase contact fractions S_kk = min(alpha_k-, alpha_k+).

@@ -109,23 +109,39 @@ inline void Solver<DIM, NP, FK>::particle_stress_row(int len, const double* left
 }
 
 // Faces of a row where phase k is a trace on both sides get the trace flux (flux/trace_flux.h) in place of
-// the row kernel's, per unit contact (before the contact-fraction weights).
+// the row kernel's, per unit contact (before the contact-fraction weights): the trace row into `tbuf` (2 + DIM
+// rows of flen) wherever a face of the row needs it, then selected face by face, both loops branch-free. The
+// views lv / rv are aufs_row's.
 template <int DIM, int NP, FluxKind FK>
 template <int D>
-inline void Solver<DIM, NP, FK>::trace_faces(int k, int len, const double* left_edges, int left_off,
-                                             const double* right_edges, int right_off, double* const* fv) const {
-  if (trace_[k] <= 0.0) return;
-  const std::size_t elen = edge_row_len();
-  const double* al = left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off;
-  const double* ar = right_edges + Lay::palpha * elen + right_off;
-  for (int f = 0; f < len; ++f) {
+inline void Solver<DIM, NP, FK>::trace_faces(int k, int len, const double* const* lv, const double* const* rv,
+                                             const double* al, const double* ar, double* const* fv, double* tbuf,
+                                             std::size_t flen) const {
+  const double tr = trace_[k];
+  if (tr <= 0.0) return;
+  // Phase k's volume fraction is al (phase 0) or 1 - al: a trace on both sides where both are below tr.
+  const auto both_trace = [&](int f) {
     const double akL = k == 0 ? al[f] : 1.0 - al[f], akR = k == 0 ? ar[f] : 1.0 - ar[f];
-    if (!(akL < trace_[k] && akR < trace_[k])) continue;  // phase k not a trace on both sides
-    const PhaseFlux<DIM> t = trace_flux<DIM, D>(edge_state(left_edges, 1, k, f + left_off),
-                                                edge_state(right_edges, 0, k, f + right_off), eos_[k]);
-    fv[0][f] = t.mass;
-    for (int d = 0; d < DIM; ++d) fv[1 + d][f] = t.mom[d];
-    fv[1 + DIM][f] = t.energy;
+    return akL < tr && akR < tr;
+  };
+  int lo = 0, hi = len;
+  while (lo < hi && !both_trace(lo)) ++lo;
+  while (hi > lo && !both_trace(hi - 1)) --hi;
+  if (lo == hi) return;
+  const double* l[2 + DIM];
+  const double* r[2 + DIM];
+  double* t[2 + DIM];
+  for (int q = 0; q < 2 + DIM; ++q) {
+    l[q] = lv[q] + lo;
+    r[q] = rv[q] + lo;
+    t[q] = tbuf + q * flen + lo;
+  }
+  trace_row<DIM, D>(hi - lo, l, r, t, eos_[k]);
+  for (int q = 0; q < 2 + DIM; ++q) {
+    double* out = fv[q];
+    const double* tq = tbuf + q * flen;
+#pragma GCC ivdep
+    for (int f = lo; f < hi; ++f) out[f] = both_trace(f) ? tq[f] : out[f];
   }
 }
 
