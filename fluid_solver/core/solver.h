@@ -418,6 +418,7 @@ class Solver final : public FluidSimulation {
   struct Scratch {
     std::vector<double> data;
     double* faces = nullptr;
+    double* faces2 = nullptr;  // the transverse sweeps' face row below the current one
     double* edges[2] = {nullptr, nullptr};
     double* mini = nullptr;
     double* face1 = nullptr;
@@ -436,9 +437,10 @@ class Solver final : public FluidSimulation {
     for (auto& sc : scratch_) {
       const std::size_t xsize = static_cast<std::size_t>(kExchangeScratch) * static_cast<std::size_t>(g_.n[0]);
       const std::size_t tsize = static_cast<std::size_t>(2 + DIM) * flen;
-      sc.data.assign(fsize + 3 * esize + kFaceVars + xsize + tsize, 0.0);
+      sc.data.assign(2 * fsize + 3 * esize + kFaceVars + xsize + tsize, 0.0);
       sc.faces = sc.data.data();
-      sc.edges[0] = sc.faces + fsize;
+      sc.faces2 = sc.faces + fsize;
+      sc.edges[0] = sc.faces2 + fsize;
       sc.edges[1] = sc.edges[0] + esize;
       sc.mini = sc.edges[1] + esize;
       sc.face1 = sc.mini + esize;
@@ -473,6 +475,8 @@ class Solver final : public FluidSimulation {
                      double* buf, std::size_t flen);
   template <int D>
   void add_boundary_flux(Scratch& sc, const double* buf, std::size_t flen, int f, std::size_t cell, int sign) const;
+  template <int D, bool ASSIGN>
+  void apply_cells(const double* low, const double* high, std::size_t flen, std::size_t base, int n, double inv_dx);
   template <int D, bool ASSIGN = false>
   void apply_right(const double* buf, std::size_t flen, std::size_t rbase, int f0, int f1, double inv_dx);
   template <int D>
@@ -491,8 +495,8 @@ class Solver final : public FluidSimulation {
   void particle_stress_row(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                            double* buf, std::size_t flen) const;
   template <int D>
-  void trace_faces(int k, int len, const double* const* lv, const double* const* rv, const double* al,
-                   const double* ar, double* const* fv, double* tbuf, std::size_t flen) const;
+  void trace_faces(int k, int len, const double* const* lv, const double* const* rv, const double* al, const double* ar,
+                   double* const* fv, double* tbuf, std::size_t flen) const;
   template <int D, ReconMode RM>
   Lagrangian add_intra_cell(const PhaseState<DIM> (&R)[NP], double aR, const double* right_edges, int e,
                             Lagrangian right) const;

@@ -45,10 +45,14 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
         PassClock clk(pass_acc(Pass::Apply));
         add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
         add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
-        blocked(true);
-        apply_right<D, DIM == 1>(sc.faces, flen, base, 0, n0, inv_dx);
-        blocked(false);
-        apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
+        if (emb_.active && !emb_.blocked[D].empty()) {  // a blocked face's two cells get different fluxes
+          blocked(true);
+          apply_right<D, DIM == 1>(sc.faces, flen, base, 0, n0, inv_dx);
+          blocked(false);
+          apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
+        } else {  // cell i between faces i and i + 1 of the row
+          apply_cells<D, DIM == 1>(sc.faces, sc.faces + 1, flen, base, n0, inv_dx);
+        }
       }
       row_done(sc, base, n0);
     }
@@ -64,8 +68,11 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
       const int a = static_cast<int>(static_cast<long>(ch) * nD / chunks);
       const int b = static_cast<int>(static_cast<long>(ch + 1) * nD / chunks);
       auto row_base = [&](int layer) { return D == 1 ? g_.index(0, layer, o) : g_.index(0, o, layer); };
-      // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer.
+      // Edge rows alternate between the two buffers: `prev` holds the cell row below the face layer; so do
+      // the face rows: `low` holds the faces below that cell row, `high` those above it.
       int prev = 0;
+      double* low = sc.faces;
+      double* high = sc.faces2;
       {
         PassClock clk(pass_acc(Pass::Reconstruction));
         compute_edges<D, RM>(row_base(a - 1), n0, sc.edges[prev]);
@@ -83,28 +90,27 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
         }
         {
           PassClock clk(pass_acc(Pass::Fluxes));
-          compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.faces, flen);
+          compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, high, flen);
         }
+        // A blocked face's buffer entry holds the wall flux of the cell below it (high_side false) or above it.
         const auto blocked = [&](bool high_side) {
           if (emb_.active) {
             PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
             blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.mini, sc.face1,
-                                       sc.faces, flen);
+                                       high, flen);
           }
         };
         PassClock clk(pass_acc(Pass::Apply));
         if (layer == 0)
-          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base + f, 1);
+          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base + f, 1);
         if (layer == nD)
-          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, sc.faces, flen, f, base - s + f, -1);
-        if (layer < b) {
-          blocked(true);
-          apply_right<D, D == 1>(sc.faces, flen, base, 0, n0, inv_dx);
-        }
-        if (layer > a) {
+          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base - s + f, -1);
+        if (layer > a) {  // the cell row below is complete: both of its face rows are known
           blocked(false);
-          apply_left<D>(sc.faces, flen, base - s, 0, n0, inv_dx);
+          apply_cells<D, D == 1>(low, high, flen, base - s, n0, inv_dx);
         }
+        if (layer < b) blocked(true);  // for the cell row above, next layer
+        std::swap(low, high);
         prev = 1 - prev;
       }
     }
@@ -156,7 +162,8 @@ inline void Solver<DIM, NP, FK>::compute_faces(int len, const double* left_edges
       else aufs_row<DIM, D, false>(len, lv, rv, fv, eos_[k], cutoff);
       if constexpr (NP == 2)
         trace_faces<D>(k, len, lv, rv, left_edges + (Lay::kPrim + Lay::palpha) * elen + left_off,
-                       right_edges + Lay::palpha * elen + right_off, fv, scratch_[static_cast<std::size_t>(omp_get_thread_num())].trace, flen);
+                       right_edges + Lay::palpha * elen + right_off, fv,
+                       scratch_[static_cast<std::size_t>(omp_get_thread_num())].trace, flen);
     }
     if constexpr (NP == 2) {
       // Weight by the same-phase contact fractions S_kk = min(alpha_k-, alpha_k+).
@@ -224,8 +231,49 @@ inline void Solver<DIM, NP, FK>::add_boundary_flux(Scratch& sc, const double* bu
     for (int q = 0; q < 2 + DIM; ++q) sc.boundary[fvar_flux(k, q)] += area * buf[fvar_flux(k, q) * flen + f];
 }
 
-// Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f. The first sweep assigns instead
-// (ASSIGN), which saves a pass that zeroes the residual.
+// Cells [base, base + n) of a row between the face rows `low` (their low faces) and `high` (their high faces),
+// both laid out as the face-row buffer: R += (F_low - F_high) / dx, and the Lagrangian parts that the faces hand
+// to the cell (the low face's right part, the high face's left part); the first sweep assigns (ASSIGN).
+template <int DIM, int NP, FluxKind FK>
+template <int D, bool ASSIGN>
+inline void Solver<DIM, NP, FK>::apply_cells(const double* low, const double* high, std::size_t flen, std::size_t base,
+                                             int n, double inv_dx) {
+  const auto difference = [&](int rvar, int fvar) {
+    double* r = R_.var(rvar) + base;
+    const double* fl = low + fvar * flen;
+    const double* fh = high + fvar * flen;
+    if constexpr (ASSIGN)
+      for (int i = 0; i < n; ++i) r[i] = inv_dx * (fl[i] - fh[i]);
+    else
+      for (int i = 0; i < n; ++i) r[i] += inv_dx * (fl[i] - fh[i]);
+  };
+  for (int k = 0; k < NP; ++k)
+    for (int q = 0; q < 2 + DIM; ++q) difference(Lay::mass(k) + q, fvar_flux(k, q));
+  if constexpr (NP == 2) {
+    if (gran_) difference(Lay::heat, fvar_heat);
+    // Phase 0 gets +Lag, phase 1 gets -Lag (its [X_k] is opposite); momentum along the face normal.
+    double* ra = R_.var(Lay::alpha) + base;
+    double* rm0 = R_.var(Lay::mom(0, D)) + base;
+    double* rm1 = R_.var(Lay::mom(NP - 1, D)) + base;
+    double* re0 = R_.var(Lay::energy(0)) + base;
+    double* re1 = R_.var(Lay::energy(NP - 1)) + base;
+    const double* lr = low + fvar_lag_right * flen;
+    const double* ll = high + fvar_lag_left * flen;
+    for (int i = 0; i < n; ++i) {
+      const double la = inv_dx * (lr[i] + ll[i]);
+      const double lm = inv_dx * (lr[flen + i] + ll[flen + i]);
+      const double le = inv_dx * (lr[2 * flen + i] + ll[2 * flen + i]);
+      ra[i] = ASSIGN ? la : ra[i] + la;
+      rm0[i] += lm;
+      rm1[i] -= lm;
+      re0[i] += le;
+      re1[i] -= le;
+    }
+  }
+}
+
+// Faces f in [f0, f1) of the row add (F + Lag_right) to cell rbase + f (rows with blocked faces). The first sweep
+// assigns instead (ASSIGN), which saves a pass that zeroes the residual.
 template <int DIM, int NP, FluxKind FK>
 template <int D, bool ASSIGN>
 inline void Solver<DIM, NP, FK>::apply_right(const double* buf, std::size_t flen, std::size_t rbase, int f0, int f1,
