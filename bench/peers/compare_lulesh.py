@@ -18,7 +18,7 @@ The script never downloads or builds a peer: build LULESH yourself and pass its 
 Usage:
   compare_lulesh.py --lulesh PATH/lulesh2.0 [--lulesh-commit HASH] [--solid build/bin/solid_solver]
                     [--sizes 30] [--pairs 5] [--strength off,on] [--variants as_built,tuned]
-                    [--csv bench/peers/results/lulesh_pairs.csv] [--png bench/peers/results/lulesh_pairs.png]
+                    [--csv bench/results/lulesh_pairs.csv] [--png bench/results/lulesh_pairs.png]
 Exit status: 0 done, 2 bad arguments or a run that failed (its output is printed).
 """
 import argparse
@@ -188,8 +188,8 @@ def main():
     ap.add_argument("--pairs", type=int, default=5)
     ap.add_argument("--strength", default="off,on")
     ap.add_argument("--variants", default="as_built,tuned")
-    ap.add_argument("--csv", default=str(ROOT / "bench" / "peers" / "results" / "lulesh_pairs.csv"))
-    ap.add_argument("--png", default=str(ROOT / "bench" / "peers" / "results" / "lulesh_pairs.png"))
+    ap.add_argument("--csv", default=str(ROOT / "bench" / "results" / "lulesh_pairs.csv"))
+    ap.add_argument("--png", default=str(ROOT / "bench" / "results" / "lulesh_pairs.png"))
     a = ap.parse_args()
     lulesh = executable(a.lulesh, "--lulesh")
     solid = executable(a.solid, "--solid")
