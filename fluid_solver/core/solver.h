@@ -5,9 +5,10 @@
 //      ghost/solid-cut cells from image points (paper step 3);
 //   3. residual: for each direction, face rows of MUSCL-reconstructed states (with mirrored
 //      solid-side states at embedded wall faces, steps 5-6) -> DEM face contributions -> applied
-//      to the two neighbouring cell rows; the transverse directions first, x last;
-//   4. Runge-Kutta combination of the flow cells, then instantaneous relaxation (two phases), and step 1 of
-//      the next stage: each row as soon as its x sweep has finished it, while it is in cache (update_row).
+//      to the two neighbouring cell rows; z first (3D), then y, which finishes each cell row as soon as both
+//      its y face rows are known: the row's x faces at once, while the row is in cache (x_row), and
+//   4. the Runge-Kutta combination of its flow cells, its instantaneous relaxation (two phases) and step 1 of
+//      the next stage for it (update_row).
 // Finite-rate exchange (drag, heat) is applied once per step after the hyperbolic step.
 // This file holds the class, its data, the step structure and the FluidSimulation interface; the member functions of
 // the physics steps are defined in the solver_*.h headers included at its end.
@@ -75,13 +76,14 @@ class Solver final : public FluidSimulation {
   long steps() const override { return steps_; }
   std::size_t interior_cells() const override { return g_.interior_count(); }
   // The step's passes over the grid, in doubles per cell, each array read or written once per pass (rows of
-  // edge states and face fluxes stay in cache; a write counted once, as STREAM counts it; the primitives'
-  // sound-speed slots are never touched): stable_dt's primitives (read U, write W) unless the last stage left
-  // them, and its wave rate (read W); per Runge-Kutta stage the primitives unless the stage before computed
-  // them row by row, the first transverse sweep (read W, write R), each further one (read W, read and write R),
-  // and the x sweep with the update (read W, R and U0, read U but in the first stage, write U and R, in 1D no R
-  // at all; write W where it computes the next primitives); with drag or heat exchange one more pass (read and
-  // write U). Ghost layers, boundary and embedded-body work are not counted.
+  // edge states and face fluxes stay in cache, and so does a cell row between the sweeps that finish it; a write
+  // counted once, as STREAM counts it; the primitives' sound-speed slots are never touched): stable_dt's
+  // primitives (read U, write W) unless the last stage left them, and its wave rate (read W); per Runge-Kutta stage
+  // the primitives unless the stage before computed them row by row, in 3D the z sweep (read W, write R), and the
+  // y sweep with the x faces and the update of each row it completes (read W, U0, in 3D R; read U but in the first
+  // stage; write R, U, and W where it computes the next primitives; the few rows whose primitives wait for the end
+  // of the sweep are not counted); with drag or heat exchange one more pass (read and write U). Ghost layers,
+  // boundary and embedded-body work are not counted.
   double traffic_bytes_per_cell_update() const override {
     const int stages = scene_.integrator == TimeIntegrator::RK2 ? 2 : 3;
     const double nc = ncons_, np = nprim_ - NP;
@@ -90,8 +92,8 @@ class Solver final : public FluidSimulation {
     for (int s = 0; s < stages; ++s) {
       const bool fused_here = s + 1 < stages ? fuse : fuse_last;
       if (s > 0 && !fuse) doubles += nc + np;
-      if (DIM > 1) doubles += (np + nc) + (DIM - 2) * (np + 2 * nc);
-      doubles += np + (DIM > 1 ? 2 * nc : 0.0) + nc + (s > 0 ? nc : 0.0) + nc + (fused_here ? np : 0.0);
+      if (DIM == 3) doubles += np + nc;
+      doubles += np + (DIM == 3 ? 2 * nc : nc) + nc + (s > 0 ? nc : 0.0) + nc + (fused_here ? np : 0.0);
     }
     if (NP == 2 && exchange_changes_state()) doubles += 2 * nc;
     return 8.0 * doubles;
@@ -314,80 +316,12 @@ class Solver final : public FluidSimulation {
     result = r;
   }
 
-  // One Runge-Kutta stage, U <- a U0 + b (U + dt R(U)): the transverse sweeps assign and add their face fluxes
-  // into R, the x sweep adds its own and hands each finished row to update_row.
-  void stage(double dt, double a, double b, bool fuse_primitives) {
-    compute_primitives();
-    primitives_valid_ = primitives_bad_ = false;
-    {
-      PassClock clk(pass_acc(Pass::Boundaries));
-      bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
-      if (emb_.active) {
-        fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
-        fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
-      }
-    }
-    if (a == 0.0) std::swap(U_, U0_);  // U0: the step's start state; update_row writes U's rows anew
-    for (auto& sc : scratch_) {
-      sc.boundary.fill(0.0);
-      sc.bad = 0.0;
-    }
-    const auto no_rows = [](Scratch&, std::size_t, int) {};
-    if constexpr (DIM > 1) sweep<1>(no_rows);
-    if constexpr (DIM > 2) sweep<2>(no_rows);
-    sweep<0>([&](Scratch& sc, std::size_t base, int len) { update_row(sc, base, len, dt, a, b, fuse_primitives); });
-    double bad = 0.0;
-    for (const auto& sc : scratch_) bad = std::max(bad, sc.bad);
-    if (fuse_primitives) {
-      primitives_valid_ = true;
-      primitives_bad_ = bad > 0.0;  // reported where the next stage or stable_dt asks for them
-    }
-    // Boundary inflow of this stage, with the stage's Runge-Kutta weights: U - U0 = b (U_prev - U0 + dt R).
-    for (std::size_t i = 0; i < step_inflow_.size(); ++i) {
-      double f = 0;
-      for (const auto& sc : scratch_) f += sc.boundary[i];
-      step_inflow_[i] = b * (step_inflow_[i] + dt * f);
-    }
-  }
-
-  // A row of cells that the x sweep has finished: the Runge-Kutta combination of its flow cells (at a = 0, U0
-  // holds the current state and every cell of the row is written), the instantaneous relaxations (two phases),
-  // and, with `fuse_primitives`, its primitives for the next stage.
-  void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives) {
-    {
-      PassClock clk(pass_acc(Pass::Update));
-      const std::uint8_t* kind = emb_.active ? emb_.kind.data() + base : nullptr;
-      for (int v = 0; v < ncons_; ++v) {
-        double* u = U_.var(v) + base;
-        const double* u0 = U0_.var(v) + base;
-        const double* r = R_.var(v) + base;
-        if (kind) {
-          // Only flow cells are advanced: ghost and solid-cut cells get their states from step 3,
-          // the interior of a body is never read.
-          if (a == 0.0)
-            for (int i = 0; i < len; ++i) u[i] = is_flow_cell(kind[i]) ? u0[i] + dt * r[i] : u0[i];
-          else
-            for (int i = 0; i < len; ++i) {
-              const double un = a * u0[i] + b * (u[i] + dt * r[i]);
-              u[i] = is_flow_cell(kind[i]) ? un : u[i];
-            }
-        } else if (a == 0.0) {
-          for (int i = 0; i < len; ++i) u[i] = u0[i] + dt * r[i];
-        } else {
-          for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
-        }
-      }
-    }
-    if constexpr (NP == 2) {
-      PassClock clk(pass_acc(Pass::Relaxation));
-      relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
-                  scene_.exchange.pressure_relaxation);
-    }
-    if (fuse_primitives) {
-      PassClock clk(pass_acc(Pass::Primitives));
-      sc.bad = std::max(sc.bad, primitives_row(base, len));
-    }
-  }
+  // solver_stage.h: one Runge-Kutta stage, the update of a finished row, the deferred primitives.
+  void stage(double dt, double a, double b, bool fuse_primitives);
+  void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives);
+  template <int D>
+  int sweep_chunks() const;
+  void deferred_primitives();
 
   // Drag, heat exchange or a granular temperature: exchange_sources changes U after the stages.
   bool exchange_changes_state() const {
@@ -395,7 +329,8 @@ class Solver final : public FluidSimulation {
     return ex.velocity == VelocityRelaxation::Drag || ex.heat_transfer || gran_;
   }
 
-  // Sweep along D with the scene's reconstruction; `rows` (Scratch&, base, len) gets each finished x row.
+  // Sweep along D with the scene's reconstruction; `rows` (Scratch&, base, len, primitives_now) gets each
+  // finished cell row (sweep_impl).
   template <int D, class RowDone>
   void sweep(RowDone&& rows) {
     switch (mode_) {
@@ -419,6 +354,8 @@ class Solver final : public FluidSimulation {
     std::vector<double> data;
     double* faces = nullptr;
     double* faces2 = nullptr;  // the transverse sweeps' face row below the current one
+    double* xfaces = nullptr;  // the y sweep's x face row (x_row)
+    double* xedges = nullptr;  // and its x edges
     double* edges[2] = {nullptr, nullptr};
     double* mini = nullptr;
     double* face1 = nullptr;
@@ -437,10 +374,12 @@ class Solver final : public FluidSimulation {
     for (auto& sc : scratch_) {
       const std::size_t xsize = static_cast<std::size_t>(kExchangeScratch) * static_cast<std::size_t>(g_.n[0]);
       const std::size_t tsize = static_cast<std::size_t>(2 + DIM) * flen;
-      sc.data.assign(2 * fsize + 3 * esize + kFaceVars + xsize + tsize, 0.0);
+      sc.data.assign(3 * fsize + 4 * esize + kFaceVars + xsize + tsize, 0.0);
       sc.faces = sc.data.data();
       sc.faces2 = sc.faces + fsize;
-      sc.edges[0] = sc.faces2 + fsize;
+      sc.xfaces = sc.faces2 + fsize;
+      sc.xedges = sc.xfaces + fsize;
+      sc.edges[0] = sc.xedges + esize;
       sc.edges[1] = sc.edges[0] + esize;
       sc.mini = sc.edges[1] + esize;
       sc.face1 = sc.mini + esize;
@@ -470,6 +409,8 @@ class Solver final : public FluidSimulation {
   // solver_sweep.h: directional sweeps, face-row fluxes, boundary inflow, residual application.
   template <int D, ReconMode RM, class RowDone>
   void sweep_impl(RowDone& row_done);
+  template <ReconMode RM>
+  void x_row(Scratch& sc, std::size_t base, double* edges, double* faces);
   template <int D, ReconMode RM>
   void compute_faces(int len, const double* left_edges, int left_off, const double* right_edges, int right_off,
                      double* buf, std::size_t flen);
@@ -559,5 +500,6 @@ class Solver final : public FluidSimulation {
 #include "fluid_solver/core/solver_exchange.h"
 #include "fluid_solver/core/solver_primitives.h"
 #include "fluid_solver/core/solver_reconstruction.h"
+#include "fluid_solver/core/solver_stage.h"
 #include "fluid_solver/core/solver_sweep.h"
 #include "fluid_solver/core/solver_two_phase_faces.h"

@@ -6,8 +6,48 @@
 
 namespace cosim::fluid {
 
-// Sweep along D over all face rows. The first transverse sweep (y; x in 1D) assigns R, the others add to it;
-// the x sweep comes last and hands every row it has finished to `row_done`.
+// The x faces of one row of cells from `base` into `faces`, with its edges in `edges`, added to R (assigned in 1D).
+template <int DIM, int NP, FluxKind FK>
+template <ReconMode RM>
+inline void Solver<DIM, NP, FK>::x_row(Scratch& sc, std::size_t base, double* edges, double* faces) {
+  const double inv_dx = 1.0 / g_.dx[0];
+  const int n0 = g_.n[0];
+  const std::size_t flen = static_cast<std::size_t>(n0 + 1);
+  // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
+  {
+    PassClock clk(pass_acc(Pass::Reconstruction));
+    compute_edges<0, RM>(base - 1, n0 + 2, edges);
+    if (emb_.active) {
+      fix_side_edges<0, RM>(base - 1, n0 + 2, edges);
+      mirror_wall_faces<0>(base, n0 + 1, edges, 0, edges, 1);
+    }
+  }
+  {
+    PassClock clk(pass_acc(Pass::Fluxes));
+    compute_faces<0, RM>(n0 + 1, edges, 0, edges, 1, faces, flen);
+  }
+  const auto blocked = [&](bool high_side) {
+    PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
+    blocked_face_fluxes<0, RM>(high_side, base, n0 + 1, edges, 0, edges, 1, sc.mini, sc.face1, faces, flen);
+  };
+  PassClock clk(pass_acc(Pass::Apply));
+  add_boundary_flux<0>(sc, faces, flen, 0, base, 1);
+  add_boundary_flux<0>(sc, faces, flen, n0, base + n0 - 1, -1);
+  if (emb_.active && !emb_.blocked[0].empty()) {  // a blocked face's two cells get different fluxes
+    blocked(true);
+    apply_right<0, DIM == 1>(faces, flen, base, 0, n0, inv_dx);
+    blocked(false);
+    apply_left<0>(faces, flen, base - 1, 1, n0 + 1, inv_dx);
+  } else {  // cell i between faces i and i + 1 of the row
+    apply_cells<0, DIM == 1>(faces, faces + 1, flen, base, n0, inv_dx);
+  }
+}
+
+// Sweep along D over all face rows, handing every cell row that it completes to row_done(Scratch&, base, len,
+// primitives_now). In 1D the x sweep is all there is. Else the last transverse sweep processed (z in 3D; y in 2D,
+// where it assigns R) goes first, and the y sweep finishes each cell row as soon as its two face rows are known:
+// the row's x faces (x_row), then row_done. The primitives of the two rows next to a chunk's ends must wait
+// (primitives_now false): the neighbouring chunk's slopes read them (deferred_primitives).
 template <int DIM, int NP, FluxKind FK>
 template <int D, ReconMode RM, class RowDone>
 inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
@@ -16,51 +56,19 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
   const int n0 = g_.n[0];
   const std::size_t flen = static_cast<std::size_t>(n0 + 1);
   if constexpr (D == 0) {
+    static_assert(DIM == 1, "the x sweep runs inside the y sweep");
     const int rows = g_.n[1] * g_.n[2];
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < rows; ++row) {
       Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
       const std::size_t base = g_.index(0, row % g_.n[1], row / g_.n[1]);
-      // Edge index e <-> cell base - 1 + e; face f has left edge row index f, right f + 1.
-      {
-        PassClock clk(pass_acc(Pass::Reconstruction));
-        compute_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-        if (emb_.active) {
-          fix_side_edges<D, RM>(base - 1, n0 + 2, sc.edges[0]);
-          mirror_wall_faces<D>(base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1);
-        }
-      }
-      {
-        PassClock clk(pass_acc(Pass::Fluxes));
-        compute_faces<D, RM>(n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.faces, flen);
-      }
-      const auto blocked = [&](bool high_side) {
-        if (emb_.active) {
-          PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
-          blocked_face_fluxes<D, RM>(high_side, base, n0 + 1, sc.edges[0], 0, sc.edges[0], 1, sc.mini, sc.face1,
-                                     sc.faces, flen);
-        }
-      };
-      {
-        PassClock clk(pass_acc(Pass::Apply));
-        add_boundary_flux<D>(sc, sc.faces, flen, 0, base, 1);
-        add_boundary_flux<D>(sc, sc.faces, flen, n0, base + n0 - 1, -1);
-        if (emb_.active && !emb_.blocked[D].empty()) {  // a blocked face's two cells get different fluxes
-          blocked(true);
-          apply_right<D, DIM == 1>(sc.faces, flen, base, 0, n0, inv_dx);
-          blocked(false);
-          apply_left<D>(sc.faces, flen, base - 1, 1, n0 + 1, inv_dx);
-        } else {  // cell i between faces i and i + 1 of the row
-          apply_cells<D, DIM == 1>(sc.faces, sc.faces + 1, flen, base, n0, inv_dx);
-        }
-      }
-      row_done(sc, base, n0);
+      x_row<RM>(sc, base, sc.edges[0], sc.faces);
+      row_done(sc, base, n0, true);
     }
   } else {
     const int nD = g_.n[D];
     const int others = D == 1 ? g_.n[2] : g_.n[1];
-    const int chunks = std::max(1, std::min(nD, 4 * omp_get_max_threads()));
-    const int tasks = others * chunks;
+    const int chunks = sweep_chunks<D>(), tasks = others * chunks;
 #pragma omp parallel for schedule(static)
     for (int t = 0; t < tasks; ++t) {
       Scratch& sc = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
@@ -100,16 +108,23 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
                                        high, flen);
           }
         };
-        PassClock clk(pass_acc(Pass::Apply));
-        if (layer == 0)
-          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base + f, 1);
-        if (layer == nD)
-          for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base - s + f, -1);
-        if (layer > a) {  // the cell row below is complete: both of its face rows are known
-          blocked(false);
-          apply_cells<D, D == 1>(low, high, flen, base - s, n0, inv_dx);
+        {
+          PassClock clk(pass_acc(Pass::Apply));
+          if (layer == 0)
+            for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base + f, 1);
+          if (layer == nD)
+            for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base - s + f, -1);
+          if (layer > a) {  // the cell row below is complete: both of its face rows are known
+            blocked(false);
+            apply_cells<D, D == DIM - 1>(low, high, flen, base - s, n0, inv_dx);
+          }
+          if (layer < b) blocked(true);  // for the cell row above, next layer
         }
-        if (layer < b) blocked(true);  // for the cell row above, next layer
+        if constexpr (D == 1)
+          if (layer > a) {
+            x_row<RM>(sc, base - s, sc.xedges, sc.xfaces);
+            row_done(sc, base - s, n0, layer - 1 >= a + 2 && layer - 1 < b - 2);
+          }
         std::swap(low, high);
         prev = 1 - prev;
       }
