@@ -151,17 +151,45 @@ def throughput_3d(quick):
     return rows
 
 
+def throughput_3d_sizes(quick):
+    """3D at 128^3 and 256^3 (64^3 and 96^3 with --quick), one and two threads, from the initial state: single
+    phase (bench/fluid/blast_3d.yaml, a blast in air) and two-phase (the tungsten blast's fluid, with drag, heat
+    exchange and granular temperature)."""
+    scenes = [("single phase, blast", "bench/fluid/blast_3d.yaml"),
+              ("air/tungsten, drag + heat", "bench/fluid/tungsten_blast_3d_fluid.yaml")]
+    rows = []
+    for label, scene in scenes:
+        for n in ([64, 96] if quick else [128, 256]):
+            for threads in [1, 2]:
+                cmd = [os.path.join(BIN, "fluid_throughput"), scene, "--steps", "4", "--threads", str(threads),
+                       "--set", f"fluid.mesh.cells=[{n},{n},{n}]"]
+                out = json.loads(run(cmd))
+                out.update(n=n, label=label)
+                rows.append(out)
+    print("\n### Throughput, 3D, by size\n")
+    print("| scene | cells | threads | Mcell-updates/s | per thread | bytes/cell | " + ROOFLINE_HEADER)
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        rate = r["cell_updates_per_s"] / 1e6
+        print(f"| {r['label']} | {r['n']}^3 | {r['threads']} | {rate:.2f} | {rate / r['threads']:.2f} | "
+              f"{r['bytes_per_cell']:.0f} | {roofline(r)}")
+    print(ROOFLINE_NOTE)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--quick", action="store_true", help="smaller sizes (a minute)")
+    ap.add_argument("--only", choices=["error", "throughput", "3d", "3d-sizes"], help="run one part only")
     a = ap.parse_args()
     for exe in ["fluid_error_vs_time", "fluid_throughput"]:
         if not os.path.exists(os.path.join(BIN, exe)):
             sys.exit(f"{exe} not built: run scripts/build.sh first")
     os.makedirs(OUT, exist_ok=True)
-    error_vs_time(a.quick)
-    throughput(a.quick)
-    throughput_3d(a.quick)
+    parts = {"error": error_vs_time, "throughput": throughput, "3d": throughput_3d, "3d-sizes": throughput_3d_sizes}
+    for name, part in parts.items():
+        if a.only in (None, name):
+            part(a.quick)
     print(f"\nplots: {OUT}/fluid_error_vs_time.png, {OUT}/fluid_throughput.png")
 
 

@@ -90,8 +90,9 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
 }
 
 // Chunks of layers along a transverse direction D per line of rows (the sweep's parallel tasks).
+template <int DIM, int NP, FluxKind FK>
 template <int D>
-int sweep_chunks() const {
+inline int Solver<DIM, NP, FK>::sweep_chunks() const {
   return std::max(1, std::min(g_.n[D], 4 * omp_get_max_threads()));
 }
 
