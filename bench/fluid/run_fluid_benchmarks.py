@@ -123,6 +123,13 @@ def roofline(r):
             f"{100 * r['fraction_of_ceiling']:.0f}% of {r['ceiling_cell_updates_per_s'] / 1e6:.1f} M/s |")
 
 
+def cube_run(scene, n, threads, steps, extra=()):
+    """fluid_throughput's result for `scene` on an n^3 mesh, with n added."""
+    cmd = [os.path.join(BIN, "fluid_throughput"), scene, "--steps", str(steps), "--threads", str(threads),
+           "--set", f"fluid.mesh.cells=[{n},{n},{n}]", *extra]
+    return json.loads(run(cmd)) | {"n": n}
+
+
 def throughput_3d(quick):
     """The 3D tungsten blast's fluid (bench/fluid/tungsten_blast_3d_fluid.yaml: air and dispersed tungsten
     particles, drag, heat exchange, granular temperature): at 120^3 from its initial state (a quiescent domain
@@ -133,13 +140,8 @@ def throughput_3d(quick):
     rows = []
     for n, after in cases:
         for threads in [1, 2]:
-            cmd = [os.path.join(BIN, "fluid_throughput"), scene, "--steps", "4" if quick else "8", "--threads",
-                   str(threads), "--set", f"fluid.mesh.cells=[{n},{n},{n}]"]
-            if after > 0:
-                cmd += ["--after", str(after)]
-            out = json.loads(run(cmd))
-            out.update(n=n, after=after)
-            rows.append(out)
+            extra = ["--after", str(after)] if after > 0 else []
+            rows.append(cube_run(scene, n, threads, 4 if quick else 8, extra) | {"after": after})
     print("\n### Throughput, 3D two-phase (tungsten blast fluid)\n")
     print("| cells | timed after | threads | Mcell-updates/s | per thread | bytes/cell | " + ROOFLINE_HEADER)
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -161,11 +163,7 @@ def throughput_3d_sizes(quick):
     for label, scene in scenes:
         for n in ([64, 96] if quick else [128, 256]):
             for threads in [1, 2]:
-                cmd = [os.path.join(BIN, "fluid_throughput"), scene, "--steps", "4", "--threads", str(threads),
-                       "--set", f"fluid.mesh.cells=[{n},{n},{n}]"]
-                out = json.loads(run(cmd))
-                out.update(n=n, label=label)
-                rows.append(out)
+                rows.append(cube_run(scene, n, threads, 4) | {"label": label})
     print("\n### Throughput, 3D, by size\n")
     print("| scene | cells | threads | Mcell-updates/s | per thread | bytes/cell | " + ROOFLINE_HEADER)
     print("|---|---|---|---|---|---|---|---|---|")
