@@ -164,19 +164,18 @@ class Solver final : public FluidSimulation {
   void advance(double dt) override {
     step_inflow_.fill(0.0);
     // The stages compute the next stage's primitives row by row, but with an embedded boundary (whose wall
-    // faces read the primitives of other rows during a sweep); the last stage also where exchange or ghost
-    // states change U after it. Otherwise the next step's stable_dt finds its primitives ready.
+    // faces read the primitives of other rows during a sweep); the next step's stable_dt then finds them
+    // ready. The last stage applies drag and heat exchange to each row it finishes, before its primitives.
     const bool fuse = !emb_.active;
-    const bool fuse_last = fuse && !(NP == 2 && exchange_changes_state());
+    const double exchange_dt = NP == 2 && exchange_changes_state() ? dt : 0.0;
     if (scene_.integrator == TimeIntegrator::RK2) {
-      stage(dt, 0.0, 1.0, fuse_last);
-      stage(dt, 0.5, 0.5, fuse_last);
+      stage(dt, 0.0, 1.0, fuse);
+      stage(dt, 0.5, 0.5, fuse, exchange_dt);
     } else {
       stage(dt, 0.0, 1.0, fuse);
       stage(dt, 0.75, 0.25, fuse);
-      stage(dt, 1.0 / 3.0, 2.0 / 3.0, fuse_last);
+      stage(dt, 1.0 / 3.0, 2.0 / 3.0, fuse, exchange_dt);
     }
-    if constexpr (NP == 2) exchange_sources(dt);
     if (emb_.active) {
       PassClock clk(pass_acc(Pass::Boundaries));
       store_ghost_states();
@@ -317,13 +316,14 @@ class Solver final : public FluidSimulation {
   }
 
   // solver_stage.h: one Runge-Kutta stage, the update of a finished row, the deferred primitives.
-  void stage(double dt, double a, double b, bool fuse_primitives);
-  void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives);
+  void stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt = 0.0);
+  void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives,
+                  double exchange_dt);
   template <int D>
   int sweep_chunks() const;
   void deferred_primitives();
 
-  // Drag, heat exchange or a granular temperature: exchange_sources changes U after the stages.
+  // Drag, heat exchange or a granular temperature: exchange_cells changes U in the last stage's rows.
   bool exchange_changes_state() const {
     const auto& ex = scene_.exchange;
     return ex.velocity == VelocityRelaxation::Drag || ex.heat_transfer || gran_;
@@ -461,11 +461,9 @@ class Solver final : public FluidSimulation {
   void relax_cells(std::size_t base, int len, bool vrelax, bool prelax);
   template <bool GRAN>
   void relax_cells_as(std::size_t base, int len, bool vrelax, bool prelax);
-  void exchange_sources(double dt);
+  void exchange_cells(Scratch& sc, std::size_t base, int len, double dt);
   template <bool DRAG>
-  void exchange_rows_as(double dt);
-  template <bool DRAG, bool HEAT, bool GRAN>
-  void exchange_rows(double dt);
+  void exchange_row_as(Scratch& sc, std::size_t base, int len, double dt);
   CellState2 load_cell(std::size_t c) const;
   void store_cell(std::size_t c, const CellState2& s);
 

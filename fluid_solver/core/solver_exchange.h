@@ -40,72 +40,51 @@ inline void Solver<DIM, NP, FK>::relax_cells_as(std::size_t base, int len, bool 
 
 // Drag, heat exchange and, with a granular temperature, the loss of the particles' random motion to drag (its
 // energy decays at twice the slip's rate of the particles alone) and to inelastic collisions (GranularGas); the
-// granular energy lost becomes the material's heat (docs/methods.md §2.9, §6).
+// granular energy lost becomes the material's heat (docs/methods.md §2.9, §6). Cell by cell, so the last
+// Runge-Kutta stage applies it to each row it finishes (update_row), in cache.
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::exchange_sources(double dt) {
+inline void Solver<DIM, NP, FK>::exchange_cells(Scratch& sc, std::size_t base, int len, double dt) {
   const auto& ex = scene_.exchange;
   const bool drag = ex.velocity == VelocityRelaxation::Drag;
-  if (!drag && !ex.heat_transfer && !gran_) return;
-  double dummy = 0;
-  if constexpr (NP == 2)
+  if constexpr (NP == 2) {
     if (!drag || ex.drag_law == DragLaw::AkhatovVainshtein) {  // the row kernel (physics/exchange_row.h)
-      if (drag) exchange_rows_as<true>(dt);
-      else exchange_rows_as<false>(dt);
-      return;
+      if (drag) exchange_row_as<true>(sc, base, len, dt);
+      else exchange_row_as<false>(sc, base, len, dt);
+    } else {
+      for (int i = 0; i < len; ++i) {
+        const std::size_t c = base + i;
+        const double G = gran_ ? granular_energy(U_, c) : 0.0;
+        CellState2 s = load_cell(c);
+        s.E[NP - 1] -= G;  // drag and heat exchange see the material's energy
+        const double beta = drag ? apply_drag(s, eos_, ex, DIM, dt) : 0.0;
+        if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
+        s.E[NP - 1] += G;
+        store_cell(c, s);
+        if (gran_) {
+          const double m = s.m[NP - 1];
+          const double k = ex.granular.after_collisions(1.0 - s.alpha0, G / m * std::exp(-2.0 * dt * beta / m), dt);
+          U_.var(Lay::heat)[c] = s.E[NP - 1] - kinetic(U_, NP - 1, c) - m * k;
+        }
+      }
     }
-  for_each_row(
-      Pass::Exchange,
-      [&](std::size_t base, int len, double&) {
-        for (int i = 0; i < len; ++i) {
-          const std::size_t c = base + i;
-          const double G = gran_ ? granular_energy(U_, c) : 0.0;
-          CellState2 s = load_cell(c);
-          s.E[NP - 1] -= G;  // drag and heat exchange see the material's energy
-          const double beta = drag ? apply_drag(s, eos_, ex, DIM, dt) : 0.0;
-          if (ex.heat_transfer) apply_heat_transfer(s, eos_, ex, DIM, dt);
-          s.E[NP - 1] += G;
-          store_cell(c, s);
-          if (gran_) {
-            const double m = s.m[NP - 1];
-            const double k = ex.granular.after_collisions(1.0 - s.alpha0, G / m * std::exp(-2.0 * dt * beta / m), dt);
-            U_.var(Lay::heat)[c] = s.E[NP - 1] - kinetic(U_, NP - 1, c) - m * k;
-          }
-        }
-        // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
-        // (vectorised row pass).
-        if (ex.pressure_relaxation) {
-          PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Exchange));
-          relax_cells(base, len, false, true);
-        }
-      },
-      dummy);
+    // Drag heats the gas and heat exchange moves energy: bring the pressures back to equilibrium
+    // (vectorised row pass).
+    if (ex.pressure_relaxation) {
+      PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Exchange));
+      relax_cells(base, len, false, true);
+    }
+  }
 }
 
 template <int DIM, int NP, FluxKind FK>
 template <bool DRAG>
-inline void Solver<DIM, NP, FK>::exchange_rows_as(double dt) {
+inline void Solver<DIM, NP, FK>::exchange_row_as(Scratch& sc, std::size_t base, int len, double dt) {
   const bool heat = scene_.exchange.heat_transfer;
-  if (gran_ && heat) exchange_rows<DRAG, true, true>(dt);
-  else if (gran_) exchange_rows<DRAG, false, true>(dt);
-  else if (heat) exchange_rows<DRAG, true, false>(dt);
-  else exchange_rows<DRAG, false, false>(dt);
-}
-
-template <int DIM, int NP, FluxKind FK>
-template <bool DRAG, bool HEAT, bool GRAN>
-inline void Solver<DIM, NP, FK>::exchange_rows(double dt) {
-  double dummy = 0;
-  for_each_row(
-      Pass::Exchange,
-      [&](std::size_t base, int len, double&) {
-        exchange_row<DIM, DRAG, HEAT, GRAN>(len, two_phase_row(base), eos_, scene_.exchange, dt,
-                                            scratch_[static_cast<std::size_t>(omp_get_thread_num())].exchange);
-        if (scene_.exchange.pressure_relaxation) {
-          PassClock clk(pass_acc(Pass::Relaxation), pass_acc(Pass::Exchange));
-          relax_cells(base, len, false, true);
-        }
-      },
-      dummy);
+  const TwoPhaseRow<DIM> v = two_phase_row(base);
+  if (gran_ && heat) exchange_row<DIM, DRAG, true, true>(len, v, eos_, scene_.exchange, dt, sc.exchange);
+  else if (gran_) exchange_row<DIM, DRAG, false, true>(len, v, eos_, scene_.exchange, dt, sc.exchange);
+  else if (heat) exchange_row<DIM, DRAG, true, false>(len, v, eos_, scene_.exchange, dt, sc.exchange);
+  else exchange_row<DIM, DRAG, false, false>(len, v, eos_, scene_.exchange, dt, sc.exchange);
 }
 
 template <int DIM, int NP, FluxKind FK>

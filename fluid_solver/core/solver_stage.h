@@ -6,9 +6,10 @@
 namespace cosim::fluid {
 
 // One Runge-Kutta stage, U <- a U0 + b (U + dt R(U)): the sweeps assign and add their face fluxes into R, and
-// each cell row that the y sweep (x in 1D) completes goes to update_row.
+// each cell row that the y sweep (x in 1D) completes goes to update_row; exchange_dt > 0: the step's drag and
+// heat exchange over that time follow in each row (the last stage).
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_primitives) {
+inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt) {
   compute_primitives();
   primitives_valid_ = primitives_bad_ = false;
   {
@@ -25,7 +26,7 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
     sc.bad = 0.0;
   }
   const auto finish = [&](Scratch& sc, std::size_t base, int len, bool primitives_now) {
-    update_row(sc, base, len, dt, a, b, fuse_primitives && primitives_now);
+    update_row(sc, base, len, dt, a, b, fuse_primitives && primitives_now, exchange_dt);
   };
   if constexpr (DIM == 1) {
     sweep<0>(finish);
@@ -50,10 +51,11 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
 
 // A row of cells whose residual is complete: the Runge-Kutta combination of its flow cells (at a = 0, U0
 // holds the current state and every cell of the row is written), the instantaneous relaxations (two phases),
-// and, with `fuse_primitives`, its primitives for the next stage.
+// drag and heat exchange over exchange_dt where it is > 0, and, with `fuse_primitives`, its primitives for the
+// next stage or step.
 template <int DIM, int NP, FluxKind FK>
 inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b,
-                                            bool fuse_primitives) {
+                                            bool fuse_primitives, double exchange_dt) {
   {
     PassClock clk(pass_acc(Pass::Update));
     const std::uint8_t* kind = emb_.active ? emb_.kind.data() + base : nullptr;
@@ -83,6 +85,11 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
     relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
                 scene_.exchange.pressure_relaxation);
   }
+  if constexpr (NP == 2)
+    if (exchange_dt > 0.0) {
+      PassClock clk(pass_acc(Pass::Exchange));
+      exchange_cells(sc, base, len, exchange_dt);
+    }
   if (fuse_primitives) {
     PassClock clk(pass_acc(Pass::Primitives));
     sc.bad = std::max(sc.bad, primitives_row(base, len));
