@@ -87,15 +87,13 @@ class Solver final : public FluidSimulation {
   double traffic_bytes_per_cell_update() const override {
     const int stages = scene_.integrator == TimeIntegrator::RK2 ? 2 : 3;
     const double nc = ncons_, np = nprim_ - NP;
-    const bool fuse = !emb_.active, fuse_last = fuse && !(NP == 2 && exchange_changes_state());
-    double doubles = (fuse_last ? 0.0 : nc + np) + np;
+    const bool fuse = !emb_.active;
+    double doubles = (fuse ? 0.0 : nc + np) + np;
     for (int s = 0; s < stages; ++s) {
-      const bool fused_here = s + 1 < stages ? fuse : fuse_last;
       if (s > 0 && !fuse) doubles += nc + np;
       if (DIM == 3) doubles += np + nc;
-      doubles += np + (DIM == 3 ? 2 * nc : nc) + nc + (s > 0 ? nc : 0.0) + nc + (fused_here ? np : 0.0);
+      doubles += np + (DIM == 3 ? 2 * nc : nc) + nc + (s > 0 ? nc : 0.0) + nc + (fuse ? np : 0.0);
     }
-    if (NP == 2 && exchange_changes_state()) doubles += 2 * nc;
     return 8.0 * doubles;
   }
 
