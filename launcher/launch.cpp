@@ -138,6 +138,19 @@ std::vector<std::string> split_command(const std::string& cmd) {
 }
 
 namespace {
+// The process whose failure ended the run, given the first that exited with an error: a solver that ends because
+// the coupler stopped the run (its log says so: a peer declared dead, a refused message) exits moments before the
+// coupler that stopped it, which is then the cause; it gets up to a second to exit.
+Child& stopping_coupler(std::vector<Child>& children, Child& first) {
+  if (first.name == "coupler" || tail(first.log, 5).find("coupler stopped the run") == std::string::npos) return first;
+  for (auto& c : children)
+    if (c.name == "coupler") {
+      for (int i = 0; i < 50 && c.running && !poll(c); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      return !c.running && c.exit_code != 0 ? c : first;
+    }
+  return first;
+}
+
 // What the scene says about its run: coupled or fluid-only, its name, and the programs (the scene's launcher:
 // commands where the command line gives none). Prints the error and gives nothing when the scene cannot be read.
 struct ScenePlan {
@@ -425,13 +438,15 @@ int run(const LaunchOptions& opt) {
       if (first_exit == 0) first_exit = now_s();
       if (c.exit_code != 0) {
         if (tty && !opt.quiet) std::cerr << "\n";
-        const Child failed = c;  // as it ended, before the others are stopped
+        Child& cause = stopping_coupler(children, c);
+        const Child failed = cause;  // as it ended, before the others are stopped
         stop_children();
-        std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", c.describe(), c.exit_code,
-                                 c.log.string(), tail(c.log, 15));
-        summarise("failed", fmt::format("{} failed ({}); the others were stopped", c.name, exit_description(c)),
+        std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", failed.describe(),
+                                 failed.exit_code, failed.log.string(), tail(failed.log, 15));
+        summarise("failed",
+                  fmt::format("{} failed ({}); the others were stopped", failed.name, exit_description(failed)),
                   &failed);
-        return c.exit_code;
+        return failed.exit_code;
       }
     }
     if (first_exit > 0 && finished < static_cast<int>(children.size()) && now_s() - first_exit > grace) {
