@@ -141,7 +141,7 @@ namespace {
 // The process whose failure ended the run, given the first that exited with an error: a solver that ends because
 // the coupler stopped the run (its log says so: a peer declared dead, a refused message) exits moments before the
 // coupler that stopped it, which is then the cause; it gets up to a second to exit.
-Child& stopping_coupler(std::vector<Child>& children, Child& first) {
+Child& failure_cause(std::vector<Child>& children, Child& first) {
   if (first.name == "coupler" || tail(first.log, 5).find("coupler stopped the run") == std::string::npos) return first;
   for (auto& c : children)
     if (c.name == "coupler") {
@@ -438,8 +438,7 @@ int run(const LaunchOptions& opt) {
       if (first_exit == 0) first_exit = now_s();
       if (c.exit_code != 0) {
         if (tty && !opt.quiet) std::cerr << "\n";
-        Child& cause = stopping_coupler(children, c);
-        const Child failed = cause;  // as it ended, before the others are stopped
+        const Child failed = failure_cause(children, c);  // as it ended, before the others are stopped
         stop_children();
         std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", failed.describe(),
                                  failed.exit_code, failed.log.string(), tail(failed.log, 15));
