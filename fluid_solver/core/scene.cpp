@@ -278,6 +278,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
       st.beta = ps->get<double>("beta", st.beta, config::in_range(1.0, 10.0));
       st.packing = ps->get<double>("packing", st.packing, config::in_range(0.3, 0.74));
       st.delta = ps->get<double>("delta", st.delta, config::in_range(1e-4, 0.1));
+      st.skip_below = ps->get<double>("skip_below", st.skip_below, config::in_range(0.0, 1e-3));
       ps->finish();
     }
     GranularGas& gr = s.exchange.granular;

@@ -104,8 +104,23 @@ inline void Solver<DIM, NP, FK>::particle_stress_row(int len, const double* left
     r.k_right = rv(Lay::pgran);
     r.flux_heat = buf + fvar_heat * flen;
   }
-  add_particle_stress_row<DIM, D, B, GRAN>(len, r, scene_.exchange.particle_stress, scene_.exchange.granular,
-                                           eos_[NP - 1]);
+  // Only the span of the row where the particles are more than a trace (or move at random) on a side of a face:
+  // a trace's stress and compaction speed are far below round-off of the flow (skip_below, particle_stress.h).
+  const ParticleStress& ps = scene_.exchange.particle_stress;
+  int first = 0, last = len;
+  if (ps.skip_below > 0.0) {
+    const double acut = 1.0 - ps.skip_below;  // carrier fractions above it: a particle trace
+    const auto active = [&](int f) {
+      bool a = r.alpha_left[f] <= acut || r.alpha_right[f] <= acut;
+      if constexpr (GRAN) a = a || r.k_left[f] > kRandomEnergyOfATrace || r.k_right[f] > kRandomEnergyOfATrace;
+      return a;
+    };
+    while (first < len && !active(first)) ++first;
+    while (last > first && !active(last - 1)) --last;
+    if (first == last) return;
+  }
+  if (first > 0) r.advance(first);
+  add_particle_stress_row<DIM, D, B, GRAN>(last - first, r, ps, scene_.exchange.granular, eos_[NP - 1]);
 }
 
 // Faces of a row where phase k is a trace on both sides get the trace flux (flux/trace_flux.h) in place of

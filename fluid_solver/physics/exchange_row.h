@@ -70,10 +70,10 @@ void exchange_row(int n, const TwoPhaseRow<DIM> r, const eos::StiffenedGas (&e)[
       pw1[i] = mp / (1.0 - a0);
     }
   }
-  // 2. exp and pow, scalar.
+  // 2. exp and pow, scalar; exp(0) = 1 without the call (a cell without slip: the ambient of a blast).
   for (int i = 0; i < n; ++i) {
-    if constexpr (DRAG) decay[i] = std::exp(decay[i]);
-    if constexpr (GRAN) gdecay[i] = std::exp(gdecay[i]);
+    if constexpr (DRAG) decay[i] = decay[i] == 0.0 ? 1.0 : std::exp(decay[i]);
+    if constexpr (GRAN) gdecay[i] = gdecay[i] == 0.0 ? 1.0 : std::exp(gdecay[i]);
     if constexpr (HEAT) {
       pw0[i] = e[0].datum_power(pw0[i]);
       pw1[i] = e[1].datum_power(pw1[i]);
@@ -137,9 +137,9 @@ void exchange_row(int n, const TwoPhaseRow<DIM> r, const eos::StiffenedGas (&e)[
     r.E[0][i] = e0;
     r.E[1][i] = e1;
   }
-  // 4. exp, scalar.
+  // 4. exp, scalar, where the temperatures differ (step 5 leaves the others alone).
   if constexpr (HEAT)
-    for (int i = 0; i < n; ++i) hdecay[i] = 1.0 - std::exp(hdecay[i]);
+    for (int i = 0; i < n; ++i) hdecay[i] = dT_s[i] == 0.0 ? 0.0 : 1.0 - std::exp(hdecay[i]);
   // 5. The heat from the gas to the particles; the granular energy back, less its losses (after_collisions).
   if constexpr (HEAT || GRAN) {
     const GranularGas& gr = ex.granular;

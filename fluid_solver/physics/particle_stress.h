@@ -16,6 +16,9 @@ struct ParticleStress {
   double beta = 3.0;     // exponent
   double packing = 0.6;  // close-packing volume fraction alpha_cp
   double delta = 0.01;   // the law is continued linearly within delta of packing
+  // Faces where the particles are below this volume fraction on both sides, with no random motion, get neither
+  // stress nor dissipation (a trace: Pi < 2e-8 Pa and c_Pi < 6e-4 m/s at 1e-5 with the defaults); 0: every face.
+  double skip_below = 1e-5;
 
   // Pi and dPi/dalpha at volume fraction a; B > 0: the exponent is the integer B (pow costs a fifth of a step).
   template <int B = 0>

@@ -27,7 +27,26 @@ struct DispersedFaceRow {
   double* flux_mom[DIM] = {};
   double* flux_energy = nullptr;
   double* flux_heat = nullptr;
+
+  // The same views from face `n` on.
+  void advance(int n) {
+    for (const double** p : {&alpha_left, &alpha_right, &rho_left, &rho_right, &p_left, &p_right}) *p += n;
+    for (int d = 0; d < DIM; ++d) {
+      u_left[d] += n;
+      u_right[d] += n;
+      flux_mom[d] += n;
+    }
+    if (k_left) k_left += n;
+    if (k_right) k_right += n;
+    flux_mass += n;
+    flux_energy += n;
+    if (flux_heat) flux_heat += n;
+  }
 };
+
+// Random energy per mass [J/kg] below which a particle trace counts as still (a random speed of 1 mm/s; round-off
+// of E - e - u^2/2 is about 1e-11).
+inline constexpr double kRandomEnergyOfATrace = 1e-6;
 
 template <int DIM, int D, int B, bool GRAN>
 void add_particle_stress_row(int len, const DispersedFaceRow<DIM>& r, const ParticleStress& ps, const GranularGas& gr,
