@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -47,42 +48,76 @@ struct LevelSet {
   const void* filled_category = nullptr;
   double filled_band_width = 0;
   std::vector<std::pair<std::size_t, bool>> previous;  // scratch: last band (index, phi >= 0)
+  std::vector<double> vertex_spread, bend;             // scratch: face_bend
   const BandPoint* at(std::size_t idx) const {
     return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])];
   }
 };
 
-// A face inside a flat region: in 3D its three edges, in 2D its two vertices, join it to faces with the same
-// normal (to 1e-8 in the cosine). A point whose closest surface point lies on such a face, or on one of its
-// flat edges or vertices, lies on that point's normal, so within the face's prism (the face swept along its
-// normal); a closest point on a bent edge or vertex is reached from the (fully grown) faces at that edge or
-// vertex. Flat faces therefore scan only their prism: on a body made of many coplanar faces (a solid mesh's
-// boundary) the band costs its area, not its area plus a band-wide rim around every face.
-inline bool flat_face(const Surface& s, const SurfaceTopology& topo, std::size_t f) {
-  constexpr double kFlat2 = 4.0 * (1.0 - 1e-8);  // |n1 + n2|^2 = 2 + 2 cos(angle) for unit normals
-  if (s.dim == 3) {
-    for (const int e : topo.face_edges[f]) {
-      const Vec3& en = topo.edge_normal[static_cast<std::size_t>(e)];
-      if (dot(en, en) < kFlat2) return false;
+// Prisms instead of boxes. A point whose closest surface point lies inside face f, or on an edge or vertex of f
+// where the surface is flat, lies on f's normal through that point: within f's prism (the face swept along its
+// normal by the band). Where the surface bends at f's edges or vertices by at most theta_f (the angle between
+// f's normal and every normal of the faces that share a vertex with f), the points closest to those edges and
+// vertices lie within theta_f r of the prism at a distance r from the surface (the wedge between two prisms
+// opens by r sin(angle)), so f's prism grown sideways by band_width * theta_f holds every point f is closest
+// to. A solid mesh's boundary, flat or gently bent by its deformation (1e-4 to 1e-3 rad between faces of the
+// tungsten target), therefore costs its area in the band, not its area plus a band-wide rim around each face.
+// face_bend: theta_f per face, from the spread delta_v of the face normals about each vertex's normal
+// (theta_f <= max over f's vertices of angle(n_f, n_v) + delta_v); pi (the whole box) for points (1D), at an
+// open edge or vertex of the surface (one face there: the points beyond it are closest to it from any side),
+// and where the surface folds by more than 90 degrees (thin bodies).
+inline void face_bend(const Surface& s, const SurfaceTopology& topo, std::vector<double>& vertex_spread,
+                      std::vector<double>& bend) {
+  const std::size_t nf = s.faces.size();
+  bend.assign(nf, M_PI);
+  if (s.dim < 2) return;
+  const std::size_t nid = static_cast<std::size_t>(s.dim);
+  const auto angle = [](const Vec3& a, const Vec3& b) {  // between unit vectors, accurate for small angles
+    const Vec3 d = a - b;
+    return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(dot(d, d))));
+  };
+  const auto unit_vertex_normal = [&](std::size_t v, bool& ok) {
+    const Vec3& n = topo.vertex_normal[v];
+    const double l = std::sqrt(dot(n, n));
+    ok = l > 1e-6;
+    return ok ? (1.0 / l) * n : n;
+  };
+  vertex_spread.assign(s.vertices.size(), 0.0);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::size_t k = 0; k < nid; ++k) {
+      const auto v = static_cast<std::size_t>(s.faces[f][k]);
+      bool ok = false;
+      const Vec3 nv = unit_vertex_normal(v, ok);
+      vertex_spread[v] = ok ? std::max(vertex_spread[v], angle(topo.face_normal[f], nv)) : M_PI;
     }
-    return true;
-  }
-  if (s.dim == 2) {
-    for (int k = 0; k < 2; ++k) {
-      const Vec3& vn = topo.vertex_normal[static_cast<std::size_t>(s.faces[f][static_cast<std::size_t>(k)])];
-      if (dot(vn, vn) < kFlat2) return false;
+  // The sum of two unit normals at an edge (3D) or a vertex (2D) has |n1 + n2|^2 = 2 + 2 cos(angle) >= 2 up to
+  // 90 degrees; one face alone gives 1.
+  const auto folded = [](const Vec3& sum) { return dot(sum, sum) < 2.0; };
+  for (std::size_t f = 0; f < nf; ++f) {
+    double th = 0;
+    if (s.dim == 3)
+      for (const int e : topo.face_edges[f]) th = folded(topo.edge_normal[static_cast<std::size_t>(e)]) ? M_PI : th;
+    else
+      for (std::size_t k = 0; k < 2; ++k)
+        th = folded(topo.vertex_normal[static_cast<std::size_t>(s.faces[f][k])]) ? M_PI : th;
+    for (std::size_t k = 0; k < nid; ++k) {
+      const auto v = static_cast<std::size_t>(s.faces[f][k]);
+      bool ok = false;
+      const Vec3 nv = unit_vertex_normal(v, ok);
+      th = std::max(th, ok ? angle(topo.face_normal[f], nv) + vertex_spread[v] : M_PI);
     }
-    return true;
+    bend[f] = std::min(th, M_PI);
   }
-  return false;
 }
 
-// Growth of a flat face's bounding box that holds its prism of half-height `band_width`, plus 1e-3 of the band
-// for the near-flat joints (an angle below 1.5e-4 rad leaves a gap below 1.5e-4 of the band).
-inline Vec3 prism_growth(const Vec3& n, double band_width) {
-  const double margin = 1e-3 * band_width;
-  return Vec3{band_width * std::abs(n[0]) + margin, band_width * std::abs(n[1]) + margin,
-              band_width * std::abs(n[2]) + margin};
+// Growth of face f's bounding box that holds its prism of half-height `band_width`, widened by the bend
+// (face_bend) and by 1e-3 of the band (round-off of the normals); never more than the whole band in any
+// direction (the box grown by the band holds every point within the band of the face).
+inline Vec3 prism_growth(const Vec3& n, double band_width, double bend) {
+  const double margin = std::max(1e-3, 1.01 * bend) * band_width;
+  Vec3 g{0, 0, 0};
+  for (std::size_t d = 0; d < 3; ++d) g[d] = std::min(band_width * std::abs(n[d]) + margin, band_width);
+  return g;
 }
 
 // Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
@@ -116,8 +151,9 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
   ls.band.clear();
   const Vec3 grow_all{band_width, band_width, band_width};
   const int nid = DIM == 1 ? 1 : DIM;
+  if (flat_prisms) face_bend(s, topo, ls.vertex_spread, ls.bend);
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    const Vec3 grow = flat_prisms && flat_face(s, topo, f) ? prism_growth(topo.face_normal[f], band_width) : grow_all;
+    const Vec3 grow = flat_prisms && DIM > 1 ? prism_growth(topo.face_normal[f], band_width, ls.bend[f]) : grow_all;
     const bool wall_face = walls && walls->skips(f);  // on the domain wall: reaches only the ghost layers
     const auto& fc = s.faces[f];
     Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;

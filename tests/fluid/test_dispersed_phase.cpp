@@ -191,7 +191,9 @@ fluid:
     const double tol = k == 0 ? 1e-9 : 1e-7;
     EXPECT_LT(drho, tol) << k;
     EXPECT_LT(du, tol) << k;
-    if (k == 0) EXPECT_LT(dp, tol);
+    if (k == 0) {
+      EXPECT_LT(dp, tol);
+    }
     EXPECT_LT(dalpha, 1e-11) << k;
     any = std::max({any, drho, du, dalpha});
   }

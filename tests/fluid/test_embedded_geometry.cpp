@@ -269,6 +269,42 @@ TEST(EmbeddedGeometry, BoxOfManyCoplanarFacesHasTheExactDistance) {
   }
 }
 
+// A bent surface: the faces that share a vertex with a face at angles up to theta scan its prism widened by
+// theta (signed_distance.h: face_bend). A subdivided box whose vertices are moved at random (as a deforming solid
+// mesh's boundary, angles between faces up to a few 1e-3 rad, and up to 0.1 rad for the larger moves), and the
+// icosphere (0.2 rad between faces): the signed distance on both lattices equals the one from whole-box scans
+// everywhere, and the widened prisms test fewer points.
+TEST(EmbeddedGeometry, BentSurfacesHaveTheDistanceOfWholeBoxScans) {
+  const auto compare = [](const Grid<3>& g, const Surface& s, const char* what) {
+    GeometryOptions prisms, boxes;
+    boxes.flat_face_prisms = false;
+    const auto a = build_geometry(g, s, prisms), b = build_geometry(g, s, boxes);
+    for (const auto* pair : {&a.centres, &a.nodes}) {
+      const auto& other = pair == &a.centres ? b.centres : b.nodes;
+      ASSERT_EQ(pair->phi.size(), other.phi.size());
+      for (std::size_t i = 0; i < pair->phi.size(); ++i)
+        ASSERT_NEAR(pair->phi[i], other.phi[i], 1e-14) << what << " point " << i;
+    }
+    EXPECT_EQ(a.category, b.category) << what;
+    std::printf("%s: %zu distance tests with widened prisms, %zu with whole boxes\n", what, a.work.distance_tests,
+                b.work.distance_tests);
+    EXPECT_LT(a.work.distance_tests, b.work.distance_tests) << what;
+  };
+  const Grid<3> g({40, 40, 40}, {0, 0, 0}, {1, 1, 1});
+  for (const double amplitude : {1e-5, 1e-4, 2e-3}) {
+    Surface box = make_subdivided_box(3, {0.31, 0.29, 0.33}, {0.72, 0.61, 0.68}, {8, 10, 12}, 0.0);
+    std::uint64_t state = 12345;
+    const auto uniform = [&] {  // deterministic, in [-1, 1)
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(state >> 11) / static_cast<double>(1ULL << 52) - 1.0;
+    };
+    for (auto& v : box.vertices)
+      for (std::size_t d = 0; d < 3; ++d) v[d] += amplitude * uniform();
+    compare(g, box, amplitude < 1e-4 ? "box, moves 1e-5" : amplitude < 1e-3 ? "box, moves 1e-4" : "box, moves 2e-3");
+  }
+  compare(g, make_sphere({0.507, 0.489, 0.512}, 0.3, 3, {0, 0, 0}), "icosphere");
+}
+
 TEST(EmbeddedGeometry, SphereAreaVolumeDistance3D) {
   const Grid<3> g({32, 32, 32}, {0, 0, 0}, {1, 1, 1});
   const Vec3 c{0.507, 0.489, 0.512};
