@@ -72,10 +72,21 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
     // The embedded boundary is not conservative: what the flow cells gained or lost. In a closed or
     // periodic domain this is exactly what crossed the moving boundary (cells covered or uncovered
     // by the body, and the ghost-cell wall treatment).
+    // Each phase's mass account: what the walls pushed through the grid faces and the cells the body covered or
+    // uncovered; `unaccounted` (created less both) is the scheme's round-off.
+    const std::vector<EmbeddedMassAccount> acc = sim.embedded_mass_account();
+    const nlohmann::json created = change(true);
+    nlohmann::json mass = nlohmann::json::array();
+    for (std::size_t k = 0; k < acc.size() && k < created.size(); ++k)
+      mass.push_back({{"phase", created[k]["phase"]},
+                      {"through_walls", acc[k].walls},
+                      {"cells_uncovered", acc[k].cells},
+                      {"unaccounted", created[k]["mass"].get<double>() - acc[k].walls - acc[k].cells}});
     j["embedded"] = {{"bodies", s.embedded.bodies.size()},
                      {"boundary_order", s.embedded.second_order ? 2 : 1},
                      {"ghost_and_solid_cut_cells", sim.embedded().ghosts.size()},
-                     {"flow_totals_change", change(false)}};
+                     {"flow_totals_change", change(false)},
+                     {"mass", mass}};
   }
   for (const auto& [k, v] : rec.extra.items()) j[k] = v;
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");

@@ -130,6 +130,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   PhaseFields phase_fields(int k) const override { return inner_->phase_fields(k); }
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
   std::vector<PhaseTotals> boundary_inflow() const override { return inner_->boundary_inflow(); }
+  std::vector<EmbeddedMassAccount> embedded_mass_account() const override { return inner_->embedded_mass_account(); }
   void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
     inner_->cell_states(cells, count, out);
   }

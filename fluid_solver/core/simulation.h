@@ -43,6 +43,14 @@ struct PhaseTotals {
   double energy = 0;
 };
 
+// Where the flow cells' mass of one phase went at an embedded boundary since the start (> 0: into the flow cells):
+// through the wall faces (the ghost-cell wall's face fluxes, integrated with the Runge-Kutta weights: the mass a
+// moving wall pushes through the fixed grid faces) and with the cells the body uncovered (+) or covered (-) when its
+// geometry changed. totals() at the end - at the start = boundary_inflow + walls + cells, to round-off.
+struct EmbeddedMassAccount {
+  double walls = 0, cells = 0;
+};
+
 class FluidSimulation {
  public:
   virtual ~FluidSimulation() = default;
@@ -61,6 +69,8 @@ class FluidSimulation {
   // totals() at the end minus at the start minus this is what the scheme itself created (round-off without
   // bodies; with bodies also what crossed their walls).
   virtual std::vector<PhaseTotals> boundary_inflow() const = 0;
+  // Per phase, the mass the embedded boundary moved into the flow cells since the start (EmbeddedMassAccount).
+  virtual std::vector<EmbeddedMassAccount> embedded_mass_account() const = 0;
   // States of the given padded cells, phase-major per cell: out[n * phases + k] (phases = scene().num_phases()).
   virtual void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const = 0;
   // Checkpoints: the whole evolving state (conserved variables of every cell as stored, time, steps, boundary

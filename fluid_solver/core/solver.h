@@ -104,6 +104,15 @@ class Solver final : public FluidSimulation {
   }
 
   void set_embedded(EmbeddedState state, bool second_order) override {
+    if (emb_.active && state.active && state.kind.size() == emb_.kind.size()) {
+      // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs.
+      const double vol = g_.cell_volume();
+      for (std::size_t c = 0; c < emb_.kind.size(); ++c) {
+        const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
+        if (change != 0)
+          for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
+      }
+    }
     emb_ = std::move(state);
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
@@ -161,6 +170,7 @@ class Solver final : public FluidSimulation {
 
   void advance(double dt) override {
     step_inflow_.fill(0.0);
+    step_wall_mass_.fill(0.0);
     // The stages compute the next stage's primitives row by row, but with an embedded boundary (whose wall
     // faces read the primitives of other rows during a sweep); the next step's stable_dt then finds them
     // ready. The last stage applies drag and heat exchange to each row it finishes, before its primitives.
@@ -179,6 +189,7 @@ class Solver final : public FluidSimulation {
       store_ghost_states();
     }
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
+    for (int k = 0; k < NP; ++k) mass_by_walls_[k] += step_wall_mass_[k];
     t_ += dt;
     ++steps_;
   }
@@ -250,9 +261,18 @@ class Solver final : public FluidSimulation {
     return out;
   }
 
+  std::vector<EmbeddedMassAccount> embedded_mass_account() const override {
+    std::vector<EmbeddedMassAccount> out(NP);
+    for (int k = 0; k < NP; ++k) out[k] = {mass_by_walls_[k], mass_by_cells_[k]};
+    return out;
+  }
+
   void save_state(checkpoint::PartWriter& w) const override {
     w.put("fluid.conserved", U_.data);  // every padded cell as stored: a restart continues bit for bit
     w.put("fluid.boundary_inflow", std::span<const double>(inflow_.data(), inflow_.size()));
+    std::vector<double> emb_mass(mass_by_walls_.begin(), mass_by_walls_.end());
+    emb_mass.insert(emb_mass.end(), mass_by_cells_.begin(), mass_by_cells_.end());
+    w.put("fluid.embedded_mass", emb_mass);
     w.put_scalar("fluid.time", t_);
     w.put_integer("fluid.steps", steps_);
     w.put_integer("fluid.conserved_vars", ncons_);
@@ -266,6 +286,9 @@ class Solver final : public FluidSimulation {
     U0_.data = U_.data;
     const std::vector<double> in = r.doubles("fluid.boundary_inflow", inflow_.size());
     std::copy(in.begin(), in.end(), inflow_.begin());
+    const std::vector<double> em = r.doubles("fluid.embedded_mass", 2 * NP);
+    std::copy(em.begin(), em.begin() + NP, mass_by_walls_.begin());
+    std::copy(em.begin() + NP, em.end(), mass_by_cells_.begin());
     t_ = r.scalar("fluid.time");
     steps_ = r.integer("fluid.steps");
     primitives_valid_ = false;
@@ -360,6 +383,7 @@ class Solver final : public FluidSimulation {
     double* exchange = nullptr;  // kExchangeScratch rows of cells: exchange_row's scratch, max_wave_rate's rates
     double* trace = nullptr;     // 2 + DIM rows of faces: trace_faces' fluxes
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
+    std::array<double, NP> flow_mass{};           // embedded runs: its mass rate into the flow cells [per second]
     double bad = 0.0;                             // 1 when update_row's primitives found an inadmissible cell
     PassTimes pass;                               // seconds per pass of this thread (profiling on)
   };
@@ -478,7 +502,9 @@ class Solver final : public FluidSimulation {
   bool primitives_bad_ = false;
   EmbeddedState emb_;
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
-  std::array<std::vector<double>, 3> side_values_;             // side ghosts' primitives, kPrim each (fill_side_ghosts)
+  // embedded_mass_account(): through the walls since the start and this step, with the cells covered or uncovered.
+  std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
+  std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
   bool profiling_ = false;  // per-pass clocks (set_pass_profiling)
   // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.

@@ -23,6 +23,7 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
   if (a == 0.0) std::swap(U_, U0_);  // U0: the step's start state; update_row writes U's rows anew
   for (auto& sc : scratch_) {
     sc.boundary.fill(0.0);
+    sc.flow_mass.fill(0.0);
     sc.bad = 0.0;
   }
   const auto finish = [&](Scratch& sc, std::size_t base, int len, bool primitives_now) {
@@ -47,6 +48,13 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
     for (const auto& sc : scratch_) f += sc.boundary[i];
     step_inflow_[i] = b * (step_inflow_[i] + dt * f);
   }
+  // Through the embedded walls: what entered the flow cells, less what came through the domain boundary.
+  if (emb_.active)
+    for (int k = 0; k < NP; ++k) {
+      double f = 0;
+      for (const auto& sc : scratch_) f += sc.flow_mass[k] - sc.boundary[fvar_flux(k, 0)];
+      step_wall_mass_[k] = b * (step_wall_mass_[k] + dt * f);
+    }
 }
 
 // A row of cells whose residual is complete: the Runge-Kutta combination of its flow cells (at a = 0, U0
@@ -77,6 +85,15 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
         for (int i = 0; i < len; ++i) u[i] = u0[i] + dt * r[i];
       } else {
         for (int i = 0; i < len; ++i) u[i] = a * u0[i] + b * (u[i] + dt * r[i]);
+      }
+    }
+    if (kind) {  // the mass rate into the row's flow cells (embedded_mass_account)
+      const double vol = g_.cell_volume();
+      for (int k = 0; k < NP; ++k) {
+        const double* r = R_.var(Lay::mass(k)) + base;
+        double s = 0;
+        for (int i = 0; i < len; ++i) s += is_flow_cell(kind[i]) ? r[i] : 0.0;
+        sc.flow_mass[k] += vol * s;
       }
     }
   }
