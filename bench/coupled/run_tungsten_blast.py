@@ -4,8 +4,8 @@
 
 Runs `cosim run` with a progress line (cycle, t / t_end, wall per cycle, ETA, from the coupler's interface
 history), then prints: wall time, cycles, the fluid's M cell-updates/s over its own solver time and over the
-wall time, the geometry's share of the cycle, the per-phase mass balance (start, through the boundary,
-created), the fluid's state bytes per cell and the peak memory of the largest process; and writes the plots (paper
+wall time, the geometry's share of the cycle, the per-phase mass balance (start, through the domain boundary,
+through the target's walls, with the cells it covered or uncovered, unaccounted), the fluid's state bytes per cell and the peak memory of the largest process; and writes the plots (paper
 Figs. 9-10): particle volume fraction on the mid-plane z = 0.5 before and after the cloud reaches the target,
 von Mises stress in the target at the end, the target's mean velocity and plastic work over time
 (bench/results/tungsten_blast_fields.png, tungsten_blast_target.png).
@@ -125,8 +125,10 @@ def main():
     t = fs["totals"]
     for k in range(2):
         m0, inflow, made = t["start"][k]["mass"], t["boundary_inflow"][k]["mass"], t["created"][k]["mass"]
-        print(f"| {t['start'][k]['phase']} mass | {m0:.5g} kg, through the boundary {inflow:+.4g}, "
-              f"created {made:+.3g} ({made / m0:.1e}) |")
+        em = fs["embedded"]["mass"][k]
+        print(f"| {t['start'][k]['phase']} mass | {m0:.5g} kg, through the domain boundary {inflow:+.4g}, through "
+              f"the target's walls {em['through_walls']:+.3g}, with the cells it covered or uncovered "
+              f"{em['cells_uncovered']:+.3g}, unaccounted {em['unaccounted']:+.1e} ({em['unaccounted'] / m0:.0e}) |")
     print(f"| energy created at the interface | {acc['interface_created_relative']:.2e} of the total |")
     print(f"| coupler | {cs.get('status', '?')} |")
 

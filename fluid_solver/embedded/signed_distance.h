@@ -49,6 +49,7 @@ struct LevelSet {
   double filled_band_width = 0;
   std::vector<std::pair<std::size_t, bool>> previous;  // scratch: last band (index, phi >= 0)
   std::vector<double> vertex_spread, bend;             // scratch: face_bend
+  bool incremental = false;                            // scan_level_set -> finish_level_set
   const BandPoint* at(std::size_t idx) const {
     return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])];
   }
@@ -124,16 +125,20 @@ inline Vec3 prism_growth(const Vec3& n, double band_width, double bend) {
 // If `category` is given (centre lattice), the out-of-band cells are set to `fluid` / `solid` there.
 // Reusing `ls` from the previous cycle (same lattice) clears only the previous band; the dense row fill
 // of phi (and category) is skipped when the surface moved by less than half the band width.
+// In two parts: scan_level_set finds the band (each point's closest face; it touches nothing but `ls`, so the
+// scans of two level sets may run side by side), finish_level_set gives the band its signs and closest data and
+// the points outside it their sign.
 template <int DIM>
-void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
-                       std::size_t& tests, std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0,
-                       std::uint8_t solid = 0, const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
+void scan_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
+                    std::size_t& tests, const std::vector<std::uint8_t>* category = nullptr,
+                    const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
   const Lattice<DIM>& L = ls.lattice;
   const double bw2 = band_width * band_width;
-  bool incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
-                     ls.filled_lower == L.lower && ls.filled_dx == L.dx && ls.filled_category == category &&
-                     ls.filled_band_width == band_width && (!category || category->size() == L.size) &&
-                     ls.filled_vertices.size() == s.vertices.size();
+  bool& incremental = ls.incremental;
+  incremental = ls.phi.size() == L.size && ls.slot.size() == L.size && ls.filled_count == L.count &&
+                ls.filled_lower == L.lower && ls.filled_dx == L.dx && ls.filled_category == category &&
+                ls.filled_band_width == band_width && (!category || category->size() == L.size) &&
+                ls.filled_vertices.size() == s.vertices.size();
   for (std::size_t v = 0; incremental && v < s.vertices.size(); ++v) {
     const Vec3 dv = s.vertices[v] - ls.filled_vertices[v];
     incremental = dot(dv, dv) < 0.25 * bw2;
@@ -195,6 +200,13 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
       }
     });
   }
+}
+
+template <int DIM>
+void finish_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
+                      std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0, std::uint8_t solid = 0) {
+  const Lattice<DIM>& L = ls.lattice;
+  const bool incremental = ls.incremental;
   // Sign and closest data in the band.
   double hmin = L.dx[0];
   for (std::size_t d = 1; d < static_cast<std::size_t>(DIM); ++d) hmin = std::min(hmin, L.dx[d]);
@@ -260,6 +272,14 @@ void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopolog
       }
     }
   }
+}
+
+template <int DIM>
+void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
+                       std::size_t& tests, std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0,
+                       std::uint8_t solid = 0, const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
+  scan_level_set(ls, s, topo, band_width, tests, category, walls, flat_prisms);
+  finish_level_set(ls, s, topo, band_width, category, fluid, solid);
 }
 
 }  // namespace cosim::fluid::embedded
