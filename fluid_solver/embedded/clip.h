@@ -35,8 +35,11 @@ namespace detail {
 // arrives on a grid line) is kept whole by both neighbours, and owns_piece() gives it to one.
 inline void clip_against(std::vector<Vec3>& in, std::vector<Vec3>& out, std::size_t d, double plane, double sign,
                          double tol) {
-  out.clear();
   const std::size_t m = in.size();
+  bool cut = false;  // a point beyond the plane: else the polygon stays as it is
+  for (std::size_t k = 0; k < m; ++k) cut = cut || sign * (in[k][d] - plane) > tol;
+  if (!cut) return;
+  out.clear();
   for (std::size_t k = 0; k < m; ++k) {
     const Vec3& p = in[k];
     const Vec3& q = in[(k + 1) % m];

@@ -16,6 +16,8 @@
 // pushed out by a cell when they carry less than min_flow_weight; F alone if nothing else is found.
 #pragma once
 
+#include <omp.h>
+
 #include <algorithm>
 #include <vector>
 
@@ -41,7 +43,15 @@ std::vector<SideImage> find_side_images(const Grid<DIM>& g, const LevelSet<DIM>&
   const Lattice<DIM>& C = centres.lattice;
   double hmax = 0;
   for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) hmax = std::max(hmax, g.dx[d]);
-  for (const auto& f : centres.band) {
+  // The band's points on the threads, each with its own list (the lists are joined and sorted by a total order,
+  // so that the result is the same for any number of threads).
+  const long nband = static_cast<long>(centres.band.size());
+  const int nthreads = nband < 4096 ? 1 : omp_get_max_threads();
+  std::vector<std::vector<SideImage>> found(static_cast<std::size_t>(nthreads));
+#pragma omp parallel for schedule(static) num_threads(nthreads)
+  for (long b = 0; b < nband; ++b) {
+    const BandPoint& f = centres.band[static_cast<std::size_t>(b)];
+    std::vector<SideImage>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
     if (!is_flow_cell(category[f.index])) continue;
     const auto I = C.ijk(f.index);
     for (int d = 0; d < DIM; ++d)
@@ -86,9 +96,10 @@ std::vector<SideImage> find_side_images(const Grid<DIM>& g, const LevelSet<DIM>&
           ip.stencil[0] = f.index;
           ip.weights[0] = 1.0;
         }
-        out.push_back(si);
+        mine.push_back(si);
       }
   }
+  for (const auto& part : found) out.insert(out.end(), part.begin(), part.end());
   std::sort(out.begin(), out.end(), [](const SideImage& a, const SideImage& b) {
     if (a.direction != b.direction) return a.direction < b.direction;
     if (a.flow_cell != b.flow_cell) return a.flow_cell < b.flow_cell;
