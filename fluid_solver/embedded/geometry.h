@@ -98,20 +98,22 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   e.category.resize(g.total);
   e.centres.lattice = centre_lattice(g);
   e.nodes.lattice = node_lattice(g);
-  // The two bands are found side by side (each scan writes its own level set only), then finished in turn (each
-  // finish runs on the threads).
+  // The two level sets side by side (each writes its own only): the centres' band, twice as wide, is found on one
+  // thread while the other finds and finishes the nodes' band; then the centres are finished on the threads.
   std::size_t centre_tests = 0, node_tests = 0;
 #pragma omp parallel sections num_threads(2) if (omp_get_max_threads() > 1 && s.faces.size() >= 256)
   {
 #pragma omp section
     scan_level_set(e.centres, s, topo, e.band_width, centre_tests, &e.category, &skip, opt.flat_face_prisms);
 #pragma omp section
-    scan_level_set(e.nodes, s, topo, node_band, node_tests, nullptr, &skip, opt.flat_face_prisms);
+    {
+      scan_level_set(e.nodes, s, topo, node_band, node_tests, nullptr, &skip, opt.flat_face_prisms);
+      finish_level_set(e.nodes, s, topo, node_band);
+    }
   }
   e.work.distance_tests += centre_tests + node_tests;
   finish_level_set(e.centres, s, topo, e.band_width, &e.category, static_cast<std::uint8_t>(CellKind::Fluid),
                    static_cast<std::uint8_t>(CellKind::Solid));
-  finish_level_set(e.nodes, s, topo, node_band);
   e.work.band_centres = e.centres.band.size();
   e.work.band_nodes = e.nodes.band.size();
   const auto t3 = clock::now();
