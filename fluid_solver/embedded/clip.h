@@ -102,73 +102,80 @@ void clip_face(const Surface& s, const SurfaceTopology& topo, std::size_t f, con
   double r = 0;
   for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) r += std::abs(n[d]) * half[d];
   r += 1e-12 * hmin;
-  for_each_in_slab(centres, lo, hi, half, n, dot(n, a), r, [&](int I, int J, int K) {
-    ++tests;
-    const Vec3 blo = nodes.point(I, J, K), bhi = nodes.point(I + 1, DIM > 1 ? J + 1 : J, DIM > 2 ? K + 1 : K);
-    Vec3 c{0, 0, 0};
-    double measure = 0;
-    std::array<double, 3> bary{1, 0, 0};
-    if constexpr (DIM == 1) {
-      if (a[0] < blo[0] - tol[0] || a[0] > bhi[0] + tol[0]) return;
-      poly.assign(1, a);
-      c = a;
-      measure = 1;
-    } else if constexpr (DIM == 2) {
-      const Vec3& b = s.vertices[static_cast<std::size_t>(fc[1])];
-      const Vec3 delta = b - a;
-      double t0 = 0, t1 = 1;
-      for (std::size_t d = 0; d < 2; ++d) {
-        // Along a grid line up to round-off (a moving wall that arrives on it): in both cells, owns_piece()
-        // decides; otherwise the piece would fall between them and the cut cell would be lost.
-        if (std::abs(delta[d]) <= tol[d]) {
-          if (std::max(a[d], b[d]) < blo[d] - tol[d] || std::min(a[d], b[d]) > bhi[d] + tol[d]) return;
-          continue;
+  // In 3D only the cells over the triangle's own footprint, not over its whole bounding box (lattice.h).
+  std::array<Vec3, 3> tri{};
+  if constexpr (DIM == 3)
+    for (std::size_t k = 0; k < 3; ++k) tri[k] = s.vertices[static_cast<std::size_t>(fc[k])];
+  for_each_in_slab(
+      centres, lo, hi, half, n, dot(n, a), r,
+      [&](int I, int J, int K) {
+        ++tests;
+        const Vec3 blo = nodes.point(I, J, K), bhi = nodes.point(I + 1, DIM > 1 ? J + 1 : J, DIM > 2 ? K + 1 : K);
+        Vec3 c{0, 0, 0};
+        double measure = 0;
+        std::array<double, 3> bary{1, 0, 0};
+        if constexpr (DIM == 1) {
+          if (a[0] < blo[0] - tol[0] || a[0] > bhi[0] + tol[0]) return;
+          poly.assign(1, a);
+          c = a;
+          measure = 1;
+        } else if constexpr (DIM == 2) {
+          const Vec3& b = s.vertices[static_cast<std::size_t>(fc[1])];
+          const Vec3 delta = b - a;
+          double t0 = 0, t1 = 1;
+          for (std::size_t d = 0; d < 2; ++d) {
+            // Along a grid line up to round-off (a moving wall that arrives on it): in both cells, owns_piece()
+            // decides; otherwise the piece would fall between them and the cut cell would be lost.
+            if (std::abs(delta[d]) <= tol[d]) {
+              if (std::max(a[d], b[d]) < blo[d] - tol[d] || std::min(a[d], b[d]) > bhi[d] + tol[d]) return;
+              continue;
+            }
+            double ta = (blo[d] - a[d]) / delta[d], tb = (bhi[d] - a[d]) / delta[d];
+            if (ta > tb) std::swap(ta, tb);
+            t0 = std::max(t0, ta);
+            t1 = std::min(t1, tb);
+          }
+          if (!(t1 > t0)) return;
+          measure = (t1 - t0) * topo.face_measure[f];
+          poly = {a + t0 * delta, a + t1 * delta};
+          c = 0.5 * (poly[0] + poly[1]);
+          const double tm = 0.5 * (t0 + t1);
+          bary = {1 - tm, tm, 0};
+        } else {
+          poly = {a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]};
+          for (std::size_t d = 0; d < 3 && poly.size() >= 3; ++d) {
+            detail::clip_against(poly, scratch, d, blo[d], -1.0, tol[d]);
+            if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0, tol[d]);
+          }
+          if (poly.size() < 3) return;
+          // area-weighted centroid of the fan triangles
+          Vec3 acc{0, 0, 0};
+          for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+            const double ak = 0.5 * dot(cross(poly[k] - poly[0], poly[k + 1] - poly[0]), n);
+            measure += ak;
+            acc = acc + (ak / 3.0) * (poly[0] + poly[k] + poly[k + 1]);
+          }
+          if (!(measure > 0)) return;
+          c = (1.0 / measure) * acc;
+          bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])],
+                                     s.vertices[static_cast<std::size_t>(fc[2])]);
         }
-        double ta = (blo[d] - a[d]) / delta[d], tb = (bhi[d] - a[d]) / delta[d];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-      }
-      if (!(t1 > t0)) return;
-      measure = (t1 - t0) * topo.face_measure[f];
-      poly = {a + t0 * delta, a + t1 * delta};
-      c = 0.5 * (poly[0] + poly[1]);
-      const double tm = 0.5 * (t0 + t1);
-      bary = {1 - tm, tm, 0};
-    } else {
-      poly = {a, s.vertices[static_cast<std::size_t>(fc[1])], s.vertices[static_cast<std::size_t>(fc[2])]};
-      for (std::size_t d = 0; d < 3 && poly.size() >= 3; ++d) {
-        detail::clip_against(poly, scratch, d, blo[d], -1.0, tol[d]);
-        if (poly.size() >= 3) detail::clip_against(poly, scratch, d, bhi[d], 1.0, tol[d]);
-      }
-      if (poly.size() < 3) return;
-      // area-weighted centroid of the fan triangles
-      Vec3 acc{0, 0, 0};
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-        const double ak = 0.5 * dot(cross(poly[k] - poly[0], poly[k + 1] - poly[0]), n);
-        measure += ak;
-        acc = acc + (ak / 3.0) * (poly[0] + poly[k] + poly[k + 1]);
-      }
-      if (!(measure > 0)) return;
-      c = (1.0 / measure) * acc;
-      bary = detail::barycentric(c, a, s.vertices[static_cast<std::size_t>(fc[1])],
-                                 s.vertices[static_cast<std::size_t>(fc[2])]);
-    }
-    if (measure <= min_measure) return;
-    if (!detail::owns_piece(poly, blo, bhi, n, DIM, tol)) return;
-    InterfaceSegment seg;
-    seg.cell = centres.index(I, J, K);
-    seg.ijk = {I - Grid<DIM>::offset(0), J - Grid<DIM>::offset(1), K - Grid<DIM>::offset(2)};
-    seg.face = static_cast<int>(f);
-    seg.center = c;
-    seg.normal = n;
-    seg.area = measure;
-    seg.velocity = face_velocity(s, static_cast<int>(f), bary);
-    seg.first_point = static_cast<int>(points.size());
-    seg.point_count = static_cast<int>(poly.size());
-    points.insert(points.end(), poly.begin(), poly.end());
-    segments.push_back(seg);
-  });
+        if (measure <= min_measure) return;
+        if (!detail::owns_piece(poly, blo, bhi, n, DIM, tol)) return;
+        InterfaceSegment seg;
+        seg.cell = centres.index(I, J, K);
+        seg.ijk = {I - Grid<DIM>::offset(0), J - Grid<DIM>::offset(1), K - Grid<DIM>::offset(2)};
+        seg.face = static_cast<int>(f);
+        seg.center = c;
+        seg.normal = n;
+        seg.area = measure;
+        seg.velocity = face_velocity(s, static_cast<int>(f), bary);
+        seg.first_point = static_cast<int>(points.size());
+        seg.point_count = static_cast<int>(poly.size());
+        points.insert(points.end(), poly.begin(), poly.end());
+        segments.push_back(seg);
+      },
+      DIM == 3 ? &tri : nullptr);
 }
 
 // Clips all faces of s to the cells of the padded grid. Pieces outside the padded grid are dropped, and so

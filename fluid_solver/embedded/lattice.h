@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 
@@ -73,9 +74,12 @@ Lattice<DIM> node_lattice(const Grid<DIM>& g) {
 // bounding box grown by e. Rows run along the axis where |n| is largest, so each row holds at most
 // 2 r / (|n|_max dx) + 1 points and the visits per face are proportional to the cells near the
 // face, not to the volume of its bounding box (a long diagonal face costs O(L/dx), not O((L/dx)^DIM)).
+// `tri` (3D, optional): the face is that triangle, and each row of the two other axes is limited to the part of
+// the box where the triangle grown by e lies (its extent along the row over the rows within e), instead of the
+// whole grown bounding box: half the visits for the triangles of a split quad.
 template <int DIM, class Visit>
 void for_each_in_slab(const Lattice<DIM>& L, const Vec3& lo, const Vec3& hi, const Vec3& e, const Vec3& n, double c,
-                      double r, Visit&& visit) {
+                      double r, Visit&& visit, const std::array<Vec3, 3>* tri = nullptr) {
   int a = 0;
   for (int d = 1; d < DIM; ++d)
     if (std::abs(n[static_cast<std::size_t>(d)]) > std::abs(n[static_cast<std::size_t>(a)])) a = d;
@@ -94,7 +98,32 @@ void for_each_in_slab(const Lattice<DIM>& L, const Vec3& lo, const Vec3& hi, con
   const double origin_a = L.coord(a, 0);
   std::array<int, 3> I{0, 0, 0};
   for (I[ub2] = rmin[ub2]; I[ub2] <= rmax[ub2]; ++I[ub2]) {
-    for (I[ub1] = rmin[ub1]; I[ub1] <= rmax[ub1]; ++I[ub1]) {
+    int r1min = rmin[ub1], r1max = rmax[ub1];
+    if (DIM == 3 && tri) {
+      // The triangle's extent along b1 over b2 in [z - e, z + e]: its vertices there and where its edges cross
+      // the two ends (the part of a convex polygon in a strip is convex, with those points as its corners).
+      const double z = L.coord(b2, I[ub2]), za = z - e[ub2], zb = z + e[ub2];
+      double y0 = 1e300, y1 = -1e300;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = (*tri)[static_cast<std::size_t>(k)];
+        const Vec3& q = (*tri)[static_cast<std::size_t>((k + 1) % 3)];
+        if (p[ub2] >= za && p[ub2] <= zb) {
+          y0 = std::min(y0, p[ub1]);
+          y1 = std::max(y1, p[ub1]);
+        }
+        for (const double zz : {za, zb})
+          if ((p[ub2] - zz) * (q[ub2] - zz) < 0) {
+            const double y = p[ub1] + (zz - p[ub2]) / (q[ub2] - p[ub2]) * (q[ub1] - p[ub1]);
+            y0 = std::min(y0, y);
+            y1 = std::max(y1, y);
+          }
+      }
+      if (y0 > y1) continue;
+      const double origin1 = L.coord(b1, 0);
+      r1min = std::max(r1min, to_int(std::ceil((y0 - e[ub1] - origin1) / L.dx[ub1])));
+      r1max = std::min(r1max, to_int(std::floor((y1 + e[ub1] - origin1) / L.dx[ub1])));
+    }
+    for (I[ub1] = r1min; I[ub1] <= r1max; ++I[ub1]) {
       const double s = n[ub1] * L.coord(b1, I[ub1]) + n[ub2] * L.coord(b2, I[ub2]);
       double t0 = (c - s - r) / n[ua], t1 = (c - s + r) / n[ua];
       if (t0 > t1) std::swap(t0, t1);

@@ -172,33 +172,39 @@ void scan_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& 
     // A face on the domain wall reaches only its outer side (its normal points out of the domain): half the slab.
     const double centre = wall_face ? plane + 0.5 * band_width : plane;
     const double half_width = wall_face ? 0.5 * band_width + 1e-9 * band_width : band_width;
-    for_each_in_slab(L, lo, hi, grow, n, centre, half_width, [&](int I, int J, int K) {
-      const std::size_t idx = L.index(I, J, K);
-      const Vec3 x = L.point(I, J, K);
-      if (wall_face && !walls->reaches(f, x)) return;
-      const int sl = ls.slot[idx];
-      const double best = sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2;
-      // The distances to the face's plane and to its bounding box bound the distance to the face from
-      // below: a point already closer to another face (or outside the band) needs no exact test.
-      const double pd = dot(n, x) - plane;
-      if (pd * pd >= best) return;
-      double lb = 0;
-      for (std::size_t d = 0; d < 3; ++d) {
-        const double out = std::max({lo[d] - x[d], 0.0, x[d] - hi[d]});
-        lb += out * out;
-      }
-      if (lb >= best) return;
-      ++tests;
-      const ClosestPoint cp = closest_on_face(s, static_cast<int>(f), x);
-      if (cp.d2 >= best) return;
-      if (sl < 0) {
-        ls.slot[idx] = static_cast<int>(ls.band.size());
-        ls.band.push_back(BandPoint{idx, static_cast<int>(f), {}, {}, {}, cp.d2});
-      } else {
-        ls.band[static_cast<std::size_t>(sl)].face = static_cast<int>(f);
-        ls.band[static_cast<std::size_t>(sl)].d2 = cp.d2;
-      }
-    });
+    std::array<Vec3, 3> tri{};
+    if constexpr (DIM == 3)
+      for (std::size_t k = 0; k < 3; ++k) tri[k] = s.vertices[static_cast<std::size_t>(fc[k])];
+    for_each_in_slab(
+        L, lo, hi, grow, n, centre, half_width,
+        [&](int I, int J, int K) {
+          const std::size_t idx = L.index(I, J, K);
+          const Vec3 x = L.point(I, J, K);
+          if (wall_face && !walls->reaches(f, x)) return;
+          const int sl = ls.slot[idx];
+          const double best = sl < 0 ? bw2 : ls.band[static_cast<std::size_t>(sl)].d2;
+          // The distances to the face's plane and to its bounding box bound the distance to the face from
+          // below: a point already closer to another face (or outside the band) needs no exact test.
+          const double pd = dot(n, x) - plane;
+          if (pd * pd >= best) return;
+          double lb = 0;
+          for (std::size_t d = 0; d < 3; ++d) {
+            const double out = std::max({lo[d] - x[d], 0.0, x[d] - hi[d]});
+            lb += out * out;
+          }
+          if (lb >= best) return;
+          ++tests;
+          const ClosestPoint cp = closest_on_face(s, static_cast<int>(f), x);
+          if (cp.d2 >= best) return;
+          if (sl < 0) {
+            ls.slot[idx] = static_cast<int>(ls.band.size());
+            ls.band.push_back(BandPoint{idx, static_cast<int>(f), {}, {}, {}, cp.d2});
+          } else {
+            ls.band[static_cast<std::size_t>(sl)].face = static_cast<int>(f);
+            ls.band[static_cast<std::size_t>(sl)].d2 = cp.d2;
+          }
+        },
+        DIM == 3 && flat_prisms ? &tri : nullptr);
   }
 }
 
