@@ -75,7 +75,7 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
     // Each phase's mass account: what the walls pushed through the grid faces and the cells the body covered or
     // uncovered; `unaccounted` (created less both) is the scheme's round-off.
     const std::vector<EmbeddedMassAccount> acc = sim.embedded_mass_account();
-    const nlohmann::json created = change(true);
+    const nlohmann::json& created = j["totals"]["created"];
     nlohmann::json mass = nlohmann::json::array();
     for (std::size_t k = 0; k < acc.size() && k < created.size(); ++k)
       mass.push_back({{"phase", created[k]["phase"]},

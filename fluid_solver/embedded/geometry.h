@@ -65,6 +65,7 @@ struct EmbeddedGeometry {
   std::vector<ImagePoint> image_points;    // every ghost and solid-cut cell
   std::vector<SideImage> side_images;      // thin bodies: flow cells' own views across them (thin_body.h)
   SurfaceTopology topology;                // the surface's normals; its connectivity is kept from cycle to cycle
+  FaceBend bend;                           // the prisms' widening per face (signed_distance.h), this cycle's
   CategoryCounts counts;
   GeometryWork work;
   GeometryTiming timing;
@@ -101,13 +102,18 @@ void build_geometry(const Grid<DIM>& g, const Surface& s, const GeometryOptions&
   // The two level sets side by side (each writes its own only): the centres' band, twice as wide, is found on one
   // thread while the other finds and finishes the nodes' band; then the centres are finished on the threads.
   std::size_t centre_tests = 0, node_tests = 0;
+  const FaceBend* bend = nullptr;  // null: whole grown boxes (GeometryOptions::flat_face_prisms off)
+  if (opt.flat_face_prisms) {
+    compute_face_bend(s, topo, e.bend);
+    bend = &e.bend;
+  }
 #pragma omp parallel sections num_threads(2) if (omp_get_max_threads() > 1 && s.faces.size() >= 256)
   {
 #pragma omp section
-    scan_level_set(e.centres, s, topo, e.band_width, centre_tests, &e.category, &skip, opt.flat_face_prisms);
+    scan_level_set(e.centres, s, topo, e.band_width, centre_tests, &e.category, &skip, bend);
 #pragma omp section
     {
-      scan_level_set(e.nodes, s, topo, node_band, node_tests, nullptr, &skip, opt.flat_face_prisms);
+      scan_level_set(e.nodes, s, topo, node_band, node_tests, nullptr, &skip, bend);
       finish_level_set(e.nodes, s, topo, node_band);
     }
   }

@@ -48,7 +48,6 @@ struct LevelSet {
   const void* filled_category = nullptr;
   double filled_band_width = 0;
   std::vector<std::pair<std::size_t, bool>> previous;  // scratch: last band (index, phi >= 0)
-  std::vector<double> vertex_spread, bend;             // scratch: face_bend
   bool incremental = false;                            // scan_level_set -> finish_level_set
   const BandPoint* at(std::size_t idx) const {
     return slot[idx] < 0 ? nullptr : &band[static_cast<std::size_t>(slot[idx])];
@@ -63,33 +62,40 @@ struct LevelSet {
 // opens by r sin(angle)), so f's prism grown sideways by band_width * theta_f holds every point f is closest
 // to. A solid mesh's boundary, flat or gently bent by its deformation (1e-4 to 1e-3 rad between faces of the
 // tungsten target), therefore costs its area in the band, not its area plus a band-wide rim around each face.
-// face_bend: theta_f per face, from the spread delta_v of the face normals about each vertex's normal
+// compute_face_bend: theta_f per face, from the spread delta_v of the face normals about each vertex's normal
 // (theta_f <= max over f's vertices of angle(n_f, n_v) + delta_v); pi (the whole box) for points (1D), at an
 // open edge or vertex of the surface (one face there: the points beyond it are closest to it from any side),
-// and where the surface folds by more than 90 degrees (thin bodies).
-inline void face_bend(const Surface& s, const SurfaceTopology& topo, std::vector<double>& vertex_spread,
-                      std::vector<double>& bend) {
-  const std::size_t nf = s.faces.size();
-  bend.assign(nf, M_PI);
+// and where the surface folds by more than 90 degrees (thin bodies). It depends on the surface alone: one per
+// cycle serves both level sets.
+struct FaceBend {
+  std::vector<Vec3> vertex_normal;    // unit; zero where the sum of the normals vanishes
+  std::vector<double> vertex_spread;  // delta_v; pi where the vertex normal vanishes
+  std::vector<double> face;           // theta_f
+};
+
+inline void compute_face_bend(const Surface& s, const SurfaceTopology& topo, FaceBend& b) {
+  const std::size_t nf = s.faces.size(), nv = s.vertices.size();
+  b.face.assign(nf, M_PI);
   if (s.dim < 2) return;
   const std::size_t nid = static_cast<std::size_t>(s.dim);
-  const auto angle = [](const Vec3& a, const Vec3& b) {  // between unit vectors, accurate for small angles
-    const Vec3 d = a - b;
+  const auto angle = [](const Vec3& a, const Vec3& c) {  // between unit vectors, accurate for small angles
+    const Vec3 d = a - c;
     return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(dot(d, d))));
   };
-  const auto unit_vertex_normal = [&](std::size_t v, bool& ok) {
+  b.vertex_normal.resize(nv);
+  b.vertex_spread.assign(nv, 0.0);
+  for (std::size_t v = 0; v < nv; ++v) {
     const Vec3& n = topo.vertex_normal[v];
     const double l = std::sqrt(dot(n, n));
-    ok = l > 1e-6;
-    return ok ? (1.0 / l) * n : n;
-  };
-  vertex_spread.assign(s.vertices.size(), 0.0);
+    const bool ok = l > 1e-6;
+    b.vertex_normal[v] = ok ? (1.0 / l) * n : Vec3{0, 0, 0};
+    if (!ok) b.vertex_spread[v] = M_PI;
+  }
   for (std::size_t f = 0; f < nf; ++f)
     for (std::size_t k = 0; k < nid; ++k) {
       const auto v = static_cast<std::size_t>(s.faces[f][k]);
-      bool ok = false;
-      const Vec3 nv = unit_vertex_normal(v, ok);
-      vertex_spread[v] = ok ? std::max(vertex_spread[v], angle(topo.face_normal[f], nv)) : M_PI;
+      if (b.vertex_spread[v] < M_PI)
+        b.vertex_spread[v] = std::max(b.vertex_spread[v], angle(topo.face_normal[f], b.vertex_normal[v]));
     }
   // The sum of two unit normals at an edge (3D) or a vertex (2D) has |n1 + n2|^2 = 2 + 2 cos(angle) >= 2 up to
   // 90 degrees; one face alone gives 1.
@@ -103,16 +109,15 @@ inline void face_bend(const Surface& s, const SurfaceTopology& topo, std::vector
         th = folded(topo.vertex_normal[static_cast<std::size_t>(s.faces[f][k])]) ? M_PI : th;
     for (std::size_t k = 0; k < nid; ++k) {
       const auto v = static_cast<std::size_t>(s.faces[f][k]);
-      bool ok = false;
-      const Vec3 nv = unit_vertex_normal(v, ok);
-      th = std::max(th, ok ? angle(topo.face_normal[f], nv) + vertex_spread[v] : M_PI);
+      const bool ok = b.vertex_spread[v] < M_PI;
+      th = std::max(th, ok ? angle(topo.face_normal[f], b.vertex_normal[v]) + b.vertex_spread[v] : M_PI);
     }
-    bend[f] = std::min(th, M_PI);
+    b.face[f] = std::min(th, M_PI);
   }
 }
 
 // Growth of face f's bounding box that holds its prism of half-height `band_width`, widened by the bend
-// (face_bend) and by 1e-3 of the band (round-off of the normals); never more than the whole band in any
+// (compute_face_bend) and by 1e-3 of the band (round-off of the normals); never more than the whole band in any
 // direction (the box grown by the band holds every point within the band of the face).
 inline Vec3 prism_growth(const Vec3& n, double band_width, double bend) {
   const double margin = std::max(1e-3, 1.01 * bend) * band_width;
@@ -121,7 +126,8 @@ inline Vec3 prism_growth(const Vec3& n, double band_width, double bend) {
   return g;
 }
 
-// Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations.
+// Computes phi on `ls.lattice` (set by the caller). `tests` counts point-face distance evaluations; `bend`
+// (compute_face_bend) lets each face scan its widened prism over its own footprint, null its whole grown box.
 // If `category` is given (centre lattice), the out-of-band cells are set to `fluid` / `solid` there.
 // Reusing `ls` from the previous cycle (same lattice) clears only the previous band; the dense row fill
 // of phi (and category) is skipped when the surface moved by less than half the band width.
@@ -131,7 +137,7 @@ inline Vec3 prism_growth(const Vec3& n, double band_width, double bend) {
 template <int DIM>
 void scan_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
                     std::size_t& tests, const std::vector<std::uint8_t>* category = nullptr,
-                    const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
+                    const DomainWallFaces* walls = nullptr, const FaceBend* bend = nullptr) {
   const Lattice<DIM>& L = ls.lattice;
   const double bw2 = band_width * band_width;
   bool& incremental = ls.incremental;
@@ -156,9 +162,8 @@ void scan_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& 
   ls.band.clear();
   const Vec3 grow_all{band_width, band_width, band_width};
   const int nid = DIM == 1 ? 1 : DIM;
-  if (flat_prisms) face_bend(s, topo, ls.vertex_spread, ls.bend);
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    const Vec3 grow = flat_prisms && DIM > 1 ? prism_growth(topo.face_normal[f], band_width, ls.bend[f]) : grow_all;
+    const Vec3 grow = bend && DIM > 1 ? prism_growth(topo.face_normal[f], band_width, bend->face[f]) : grow_all;
     const bool wall_face = walls && walls->skips(f);  // on the domain wall: reaches only the ghost layers
     const auto& fc = s.faces[f];
     Vec3 lo = s.vertices[static_cast<std::size_t>(fc[0])], hi = lo;
@@ -204,7 +209,7 @@ void scan_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& 
             ls.band[static_cast<std::size_t>(sl)].d2 = cp.d2;
           }
         },
-        DIM == 3 && flat_prisms ? &tri : nullptr);
+        DIM == 3 && bend ? &tri : nullptr);
   }
 }
 
@@ -278,14 +283,6 @@ void finish_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology
       }
     }
   }
-}
-
-template <int DIM>
-void compute_level_set(LevelSet<DIM>& ls, const Surface& s, const SurfaceTopology& topo, double band_width,
-                       std::size_t& tests, std::vector<std::uint8_t>* category = nullptr, std::uint8_t fluid = 0,
-                       std::uint8_t solid = 0, const DomainWallFaces* walls = nullptr, bool flat_prisms = true) {
-  scan_level_set(ls, s, topo, band_width, tests, category, walls, flat_prisms);
-  finish_level_set(ls, s, topo, band_width, category, fluid, solid);
 }
 
 }  // namespace cosim::fluid::embedded

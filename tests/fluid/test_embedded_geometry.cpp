@@ -270,8 +270,8 @@ TEST(EmbeddedGeometry, BoxOfManyCoplanarFacesHasTheExactDistance) {
 }
 
 // A bent surface: the faces that share a vertex with a face at angles up to theta scan its prism widened by
-// theta (signed_distance.h: face_bend). A subdivided box whose vertices are moved at random (as a deforming solid
-// mesh's boundary, angles between faces up to a few 1e-3 rad, and up to 0.1 rad for the larger moves), and the
+// theta (signed_distance.h: compute_face_bend). A subdivided box whose vertices are moved at random (as a deforming
+// solid mesh's boundary, angles between faces up to a few 1e-3 rad, and up to 0.1 rad for the larger moves), and the
 // icosphere (0.2 rad between faces): the signed distance on both lattices equals the one from whole-box scans
 // everywhere, and the widened prisms test fewer points.
 TEST(EmbeddedGeometry, BentSurfacesHaveTheDistanceOfWholeBoxScans) {
