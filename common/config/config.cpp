@@ -117,6 +117,46 @@ Check<std::string> one_of(std::vector<std::string> choices) {
   };
 }
 
+namespace {
+// The length of the printable UTF-8 character at text[i] (1 for printable ASCII), 0 when the byte there must be
+// escaped: a control character, an invalid, overlong or surrogate sequence, a C1 control (U+0080..U+009F).
+std::size_t printable_char(const std::string& text, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned c = b(i);
+  if (c < 0x80) return c >= 0x20 && c != 0x7f ? 1 : 0;
+  const std::size_t len = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+  if (len == 0 || i + len > text.size()) return 0;
+  unsigned cp = c & (0xff >> (len + 1));
+  for (std::size_t k = 1; k < len; ++k) {
+    if ((b(i + k) & 0xc0) != 0x80) return 0;
+    cp = (cp << 6) | (b(i + k) & 0x3f);
+  }
+  const unsigned least[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < least[len] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff) || cp < 0xa0) return 0;
+  return len;
+}
+}  // namespace
+
+std::string printable(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = printable_char(text, i);
+    if (n == 0) {
+      out += fmt::format("\\x{:02x}", static_cast<unsigned char>(text[i++]));
+    } else {
+      out.append(text, i, n);
+      i += n;
+    }
+  }
+  return out;
+}
+
+bool is_printable(const std::string& text) {
+  for (std::size_t i = 0, n = 0; i < text.size(); i += n)
+    if ((n = printable_char(text, i)) == 0) return false;
+  return true;
+}
+
 Node::Node(YAML::Node node, std::string path, std::shared_ptr<DocumentContext> ctx)
     : node_(node), path_(std::move(path)), ctx_(std::move(ctx)) {}
 

@@ -44,6 +44,11 @@ Check<double> speed();                               // |v| <= 1e5 m/s: a veloci
 Check<int> int_at_least(int lo);
 Check<std::string> one_of(std::vector<std::string> choices);
 
+// `text` safe to quote in a message: every byte that is not printable ASCII or part of a printable UTF-8 character
+// (control characters, invalid or overlong sequences) written as \xNN. is_printable: printable(text) == text.
+std::string printable(const std::string& text);
+bool is_printable(const std::string& text);
+
 class Node {
  public:
   Node(YAML::Node node, std::string path, std::shared_ptr<DocumentContext> ctx);
