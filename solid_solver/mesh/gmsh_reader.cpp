@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
+#include "common/config/config.h"
 #include "solid_solver/mesh/element_faces.h"
 
 namespace cosim::solid {
@@ -39,17 +42,36 @@ T field(std::istringstream& is, const Lines& L, std::size_t line, const char* wh
   return v;
 }
 
-// A count of entries that follow, one or more lines each: never negative, never more than the lines left (a
-// corrupt count must not become a huge allocation).
+// A count of entries that follow, one or more lines each: a whole number (not "9e18", which reads as 9), never
+// negative, never more than the lines left (a corrupt count must not become a huge allocation).
 long count_field(std::istringstream& is, const Lines& L, std::size_t line, const char* what) {
-  const long n = field<long>(is, L, line, what);
+  const std::string word = field<std::string>(is, L, line, what);
+  long n = 0;
+  const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), n);
+  if (ec == std::errc::result_out_of_range)
+    L.fail(line, fmt::format("{} is {}: far more than any mesh holds", what, word));
+  if (ec != std::errc() || end != word.data() + word.size())
+    L.fail(line, fmt::format("{} is '{}': expected a whole number", what, config::printable(word)));
   const long left = static_cast<long>(L.text.size() - L.next);
   if (n < 0) L.fail(line, fmt::format("{} is {}: expected a count >= 0", what, n));
   if (n > left) L.fail(line, fmt::format("{} is {}, but only {} lines follow in the file", what, n, left));
   return n;
 }
 
-void expect_end(Lines& L, const std::string& section) {
+// The header line of block b of a $Nodes or $Elements section that declares `blocks` of them: a "$End..." line
+// there means the section holds fewer blocks than it says.
+std::istringstream take_block(Lines& L, std::size_t& at, long b, long blocks, const char* section, const char* what) {
+  auto is = L.take(at, what);
+  if (L.text[at].rfind("$End", 0) == 0)
+    L.fail(at,
+           fmt::format("the {} section declares numEntityBlocks = {}, but ends after {} block(s)", section, blocks, b));
+  return is;
+}
+
+// The section's $End line, after the entries its header declares; `count` says what a different line means.
+void expect_end(Lines& L, const std::string& section, const std::string& count = "") {
+  if (!count.empty() && L.next < L.text.size() && L.text[L.next].rfind("$End" + section, 0) != 0)
+    L.fail(L.next, fmt::format("expected $End{} after {}: the section holds more than it declares", section, count));
   std::size_t at;
   auto is = L.take(at, ("$End" + section).c_str());
   std::string w;
@@ -148,6 +170,9 @@ Mesh read_gmsh(const std::string& path) {
   Lines L;
   L.path = path;
   {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+      throw MeshError(fmt::format("{}: is a directory, not a Gmsh mesh file", path));
     std::ifstream in(path);
     if (!in) throw MeshError(fmt::format("{}: cannot open the Gmsh mesh file", path));
     std::string s;
@@ -194,7 +219,13 @@ Mesh read_gmsh(const std::string& path) {
         std::getline(ps, rest);
         const auto q1 = rest.find('"'), q2 = rest.rfind('"');
         if (q1 == std::string::npos || q2 == q1) L.fail(ln, "expected a quoted physical group name");
-        phys_names[{dim, tag}] = rest.substr(q1 + 1, q2 - q1 - 1);
+        const std::string name = rest.substr(q1 + 1, q2 - q1 - 1);
+        // A scene (UTF-8 YAML) could not name it, and messages would carry its raw bytes.
+        if (!config::is_printable(name))
+          L.fail(ln, fmt::format("physical group {} is named '{}', which is not printable UTF-8 text (the bytes "
+                                 "shown as \\xNN are control characters or invalid UTF-8): rename the group",
+                                 tag, config::printable(name)));
+        phys_names[{dim, tag}] = name;
       }
       expect_end(L, "PhysicalNames");
     } else if (h == "$Entities") {
@@ -217,13 +248,20 @@ Mesh read_gmsh(const std::string& path) {
       auto is = L.take(ln, "numEntityBlocks numNodes minNodeTag maxNodeTag");
       const long nblocks = count_field(is, L, ln, "numEntityBlocks");
       const long nnodes = count_field(is, L, ln, "numNodes");
-      coords.reserve(static_cast<std::size_t>(std::max(0L, nnodes)) * 3);
+      const std::size_t header = ln;
+      coords.reserve(static_cast<std::size_t>(nnodes) * 3);  // checked: at most the lines left
+      long read = 0;
       for (long b = 0; b < nblocks; ++b) {
-        auto bs = L.take(ln, "a node block header 'entityDim entityTag parametric numNodesInBlock'");
+        auto bs = take_block(L, ln, b, nblocks, "$Nodes",
+                             "a node block header 'entityDim entityTag parametric numNodesInBlock'");
         field<int>(bs, L, ln, "entityDim");
         field<int>(bs, L, ln, "entityTag");
         const int parametric = field<int>(bs, L, ln, "parametric (0 or 1)");
         const long n = count_field(bs, L, ln, "numNodesInBlock");
+        read += n;
+        if (read > nnodes)
+          L.fail(ln, fmt::format("the node blocks hold more nodes than the {} the $Nodes header (line {}) declares",
+                                 nnodes, header + 1));
         std::vector<long> tags(n);
         for (long k = 0; k < n; ++k) {
           auto ts = L.take(ln, "a node tag");
@@ -236,24 +274,39 @@ Mesh read_gmsh(const std::string& path) {
           auto cs = L.take(ln, "node coordinates 'x y z'");
           for (int d = 0; d < 3; ++d) {
             const double v = field<double>(cs, L, ln, "node coordinates 'x y z'");
-            if (!std::isfinite(v)) L.fail(ln, fmt::format("node {}: non-finite coordinate", tags[k]));
+            // Beyond 1e100 m a corner Jacobian (an edge length to the power 3) could overflow.
+            if (!(std::abs(v) <= 1e100))
+              L.fail(ln, fmt::format("node {}: coordinate {:g} is not a finite number of at most 1e100 m in "
+                                     "magnitude",
+                                     tags[k], v));
             coords.push_back(v);
           }
           (void)parametric;  // parametric coordinates follow on the same line; not needed
         }
       }
-      expect_end(L, "Nodes");
+      expect_end(L, "Nodes", fmt::format("the {} node block(s) numEntityBlocks declares", nblocks));
+      if (read != nnodes)
+        L.fail(header, fmt::format("numNodes is {}, but the node blocks hold {} nodes", nnodes, read));
       have_nodes = true;
     } else if (h == "$Elements") {
       std::size_t ln;
       auto is = L.take(ln, "numEntityBlocks numElements minElementTag maxElementTag");
       const long nblocks = count_field(is, L, ln, "numEntityBlocks");
+      const long nelems = count_field(is, L, ln, "numElements");
+      const std::size_t header = ln;
+      long read = 0;
       for (long b = 0; b < nblocks; ++b) {
-        auto bs = L.take(ln, "an element block header 'entityDim entityTag elementType numElementsInBlock'");
+        auto bs = take_block(L, ln, b, nblocks, "$Elements",
+                             "an element block header 'entityDim entityTag elementType numElementsInBlock'");
         const int edim = field<int>(bs, L, ln, "entityDim");
         const int etag = field<int>(bs, L, ln, "entityTag");
         const int type = field<int>(bs, L, ln, "elementType");
         const long n = count_field(bs, L, ln, "numElementsInBlock");
+        read += n;
+        if (read > nelems)
+          L.fail(ln, fmt::format("the element blocks hold more elements than the {} the $Elements header (line {}) "
+                                 "declares",
+                                 nelems, header + 1));
         const int nn = type_nodes(type);
         for (long k = 0; k < n; ++k) {
           auto es = L.take(ln, "an element 'tag node...'");
@@ -267,7 +320,9 @@ Mesh read_gmsh(const std::string& path) {
           elems.push_back(r);
         }
       }
-      expect_end(L, "Elements");
+      expect_end(L, "Elements", fmt::format("the {} element block(s) numEntityBlocks declares", nblocks));
+      if (read != nelems)
+        L.fail(header, fmt::format("numElements is {}, but the element blocks hold {} elements", nelems, read));
       have_elements = true;
     } else if (h[0] == '$' && h.rfind("$End", 0) != 0) {
       const std::string end = "$End" + h.substr(1);  // skip sections we do not need

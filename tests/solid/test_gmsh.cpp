@@ -199,3 +199,111 @@ TEST(SolidGmsh, BadFilesNameElementGroupAndLine) {
       write_tmp("hex.msh", hex_strip(2, [](auto& h) { std::rotate(h[1].begin(), h[1].begin() + 4, h[1].end()); })));
   EXPECT_NE(hex.find("element 4 of group 'body': inverted (negative volume at every corner"), std::string::npos) << hex;
 }
+
+// Declared counts are checked against what the blocks hold, each error at the header's or block's line: $Elements'
+// numElements (it was not read at all: 10 or 9e18 passed), numEntityBlocks of both sections, $Nodes' numNodes; a
+// count like 9e18 is never used to allocate.
+TEST(SolidGmsh, DeclaredCountsMatchTheBlocks) {
+  const std::string good = read_text(kData + "two_blocks_2d.msh");
+  // "$Elements" header at line 37 ("5 6 1 6": 5 blocks, 6 elements), its blocks at 38, 40, 42, 45, 47; "$Nodes"
+  // header at line 21 ("1 6 1 6"), its block at 22.
+  struct Case {
+    std::string from, to, expected;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"$Elements\n5 6 1 6", "$Elements\n5 10 1 6",
+            ":37: numElements is 10, but the element blocks hold 6 elements"},
+           {"$Elements\n5 6 1 6", "$Elements\n5 9000000000000000000 1 6",
+            ":37: numElements is 9000000000000000000, but only 12 lines follow in the file"},
+           {"$Elements\n5 6 1 6", "$Elements\n5 9e18 1 6", ":37: numElements is '9e18': expected a whole number"},
+           {"$Elements\n5 6 1 6", "$Elements\n5 99999999999999999999 1 6",
+            ":37: numElements is 99999999999999999999: far more than any mesh holds"},
+           {"$Elements\n5 6 1 6", "$Elements\n5 4 1 6",
+            ":45: the element blocks hold more elements than the 4 the $Elements header (line 37) declares"},
+           {"$Elements\n5 6 1 6", "$Elements\n6 6 1 6",
+            ":49: the $Elements section declares numEntityBlocks = 6, but ends after 5 block(s)"},
+           {"$Elements\n5 6 1 6", "$Elements\n4 6 1 6",
+            ":47: expected $EndElements after the 4 element block(s) numEntityBlocks declares: the section holds "
+            "more than it declares"},
+           {"$Nodes\n1 6 1 6", "$Nodes\n1 7 1 6", ":21: numNodes is 7, but the node blocks hold 6 nodes"},
+           {"$Nodes\n1 6 1 6", "$Nodes\n1 5 1 6",
+            ":22: the node blocks hold more nodes than the 5 the $Nodes header (line 21) declares"},
+           {"$Nodes\n1 6 1 6", "$Nodes\n2 6 1 6",
+            ":35: the $Nodes section declares numEntityBlocks = 2, but ends after 1 block(s)"}}) {
+    const std::string e = error_of(write_tmp("counts.msh", replace(good, c.from, c.to)));
+    EXPECT_NE(e.find("solid_gmsh_counts.msh" + c.expected), std::string::npos) << c.to << ": " << e;
+  }
+}
+
+// A directory given as the mesh file is named as one (it said "no $MeshFormat section").
+TEST(SolidGmsh, DirectoryIsNotAMeshFile) {
+  const fs::path dir = fs::temp_directory_path() / "solid_gmsh_dir.msh";
+  fs::create_directories(dir);
+  const std::string e = error_of(dir.string());
+  EXPECT_NE(e.find(dir.string() + ": is a directory, not a Gmsh mesh file"), std::string::npos) << e;
+  fs::remove_all(dir);
+}
+
+// A coordinate that is not finite or beyond 1e100 m is refused at its line (1e308 was reported later as a degenerate
+// element: the corner Jacobians overflowed).
+TEST(SolidGmsh, AbsurdCoordinateIsRefusedAtItsLine) {
+  const std::string good = read_text(kData + "two_blocks_2d.msh");
+  for (const char* x : {"1e308", "-1e101"}) {
+    const std::string e =
+        error_of(write_tmp("coord.msh", replace(good, "2 1 0\n$EndNodes", std::string(x) + " 1 0\n$EndNodes")));
+    EXPECT_NE(e.find(fmt::format("solid_gmsh_coord.msh:34: node 6: coordinate {:g} is not a finite number of at most "
+                                 "1e100 m in magnitude",
+                                 std::stod(x))),
+              std::string::npos)
+        << x << ": " << e;
+  }
+  for (const char* x : {"inf", "nan"}) {
+    const std::string e =
+        error_of(write_tmp("coord.msh", replace(good, "2 1 0\n$EndNodes", std::string(x) + " 1 0\n$EndNodes")));
+    EXPECT_NE(e.find("solid_gmsh_coord.msh:34: "), std::string::npos) << x << ": " << e;
+  }
+  EXPECT_EQ(error_of(write_tmp("coord.msh", replace(good, "2 1 0\n$EndNodes", "2 1e99 0\n$EndNodes"))).find("node 6"),
+            std::string::npos);
+}
+
+// A physical group name that is not printable UTF-8 (invalid bytes, control characters) is refused at its line with
+// the bytes escaped: it used to be echoed raw, and offered as a "did you mean" suggestion by the scene. Printable
+// UTF-8 names are kept.
+TEST(SolidGmsh, GroupNameThatIsNotPrintableUtf8IsRefusedEscaped) {
+  const std::string good = read_text(kData + "two_blocks_2d.msh");
+  for (const auto& [name, shown] :
+       std::vector<std::pair<std::string, std::string>>{{"g\xff\xfe"
+                                                         "as",
+                                                         "g\\xff\\xfeas"},
+                                                        {"gas\x1b[2J", "gas\\x1b[2J"},
+                                                        {"\xc0\xaf", "\\xc0\\xaf"}}) {  // an overlong '/'
+    const std::string e = error_of(write_tmp("name.msh", replace(good, "\"gas\"", "\"" + name + "\"")));
+    EXPECT_NE(
+        e.find("solid_gmsh_name.msh:9: physical group 21 is named '" + shown + "', which is not printable UTF-8 text"),
+        std::string::npos)
+        << e;
+    EXPECT_EQ(e.find(name), std::string::npos) << e;
+  }
+  const Mesh m = read_gmsh(write_tmp("name.msh", replace(good, "\"gas\"", "\"gas_\xc3\xa9t\xc3\xa9\"")));  // gas_été
+  EXPECT_EQ(m.block_names[0], "gas_\xc3\xa9t\xc3\xa9");
+  // the scene that names a group of such a file gets the reader's message, not a raw suggestion
+  try {
+    parse_solid_scene(fmt::format(R"(
+solid:
+  mesh: {{type: gmsh, file: {}}}
+  blocks:
+    - {{name: steel, material: steel}}
+    - {{name: gas, eos: {{type: ideal_gas, gamma: 1.4}}, density: 1.0}}
+  time: {{end: 1.0}}
+)",
+                                  write_tmp("name.msh", replace(good, "\"gas\"",
+                                                                "\"g\xff\xfe"
+                                                                "as\""))));
+    ADD_FAILURE() << "accepted";
+  } catch (const cosim::config::ConfigError& ex) {
+    const std::string e = ex.what();
+    EXPECT_NE(e.find("'g\\xff\\xfeas'"), std::string::npos) << e;
+    EXPECT_EQ(e.find("did you mean"), std::string::npos) << e;
+    EXPECT_EQ(e.find("\xff"), std::string::npos) << e;
+  }
+}
