@@ -59,33 +59,60 @@ struct Loop {
   coupling::InterfaceStates last_states;
   PressurePredictor predictor;
 
-  // Timing of the open cycle: from its DtDecision to the next one (or the end of the run).
+  // Timing of the open cycle: from its DtDecision to the next one (or the end of the run); a cycle that writes a
+  // checkpoint ends when both solvers have written their parts, and the next one begins there.
   CycleTiming open;
   long open_cycle = -1;
-  double open_start = 0, busy0_f = 0, busy0_s = 0;
+  double open_start = 0;
+  struct Work {  // a peer's reported work at the start of the cycle, and in its checkpoint phase
+    double busy = 0, output = 0;
+  } start_f, start_s, ck_f, ck_s;
+  double ck_wall = 0;       // the checkpoint phase (both parts requested .. both written) less the steps within it
+  double own_output = 0;    // the coupler's interface snapshots in the open cycle [s]
+  double output_sent = -1;  // when the open cycle's first OutputRequest went out (steady clock [s]; -1: none)
+  double carry = 0;         // the cycle before, from its first OutputRequest to its end: the solvers wrote then
 
   void close_timing() {
     if (open_cycle < 0) return;
     open.wall = now_s() - open_start;
-    open.solid = hub.peer(Role::Solid).busy - busy0_s;
-    open.fluid = hub.peer(Role::Fluid).busy - busy0_f;
+    const auto steps_and_output = [&](Role r, const Work& start, const Work& in_checkpoint) {
+      const Peer& p = hub.peer(r);
+      const double output = p.output - start.output - in_checkpoint.output;
+      return std::pair{p.busy - start.busy - in_checkpoint.busy - output, output};
+    };
+    const auto [solid, solid_out] = steps_and_output(Role::Solid, start_s, ck_s);
+    const auto [fluid, fluid_out] = steps_and_output(Role::Fluid, start_f, ck_f);
+    open.solid = solid;
+    open.fluid = fluid;
     open.overlapped = cfg.scheme == coupling::Scheme::Pipelined;
+    // The solvers' snapshots, requested at the end of the cycle before, ran beside the coupler's own there (carry)
+    // and at once in both solvers; the checkpoint phase is its own stretch.
+    open.output =
+        own_output + ck_wall + output_on_path(open, std::max(0.0, solid_out - carry), std::max(0.0, fluid_out - carry));
     history.record_timing(open_cycle, open);
     sum.total.wall += open.wall;
     sum.total.solid += open.solid;
     sum.total.fluid += open.fluid;
     sum.total.coupler += open.coupler;
+    sum.total.output += open.output;
     sum.total.overlapped = open.overlapped;
     open_cycle = -1;
   }
 
   void open_timing(long n) {
+    if (open_cycle == n) return;  // opened at the end of the previous cycle's checkpoint
     close_timing();
     open = {};
     open_cycle = n;
     open_start = now_s();
-    busy0_f = hub.peer(Role::Fluid).busy;
-    busy0_s = hub.peer(Role::Solid).busy;
+    const auto work_of = [&](Role r) { return Work{hub.peer(r).busy, hub.peer(r).output}; };
+    start_f = work_of(Role::Fluid);
+    start_s = work_of(Role::Solid);
+    ck_f = ck_s = Work{};
+    ck_wall = 0;
+    carry = output_sent < 0 ? 0.0 : now_s() - output_sent;
+    own_output = 0;
+    output_sent = -1;
   }
 
   // Runs f as the coupler's own work of the open cycle (timed) and returns its result.
@@ -166,11 +193,12 @@ struct Loop {
     s.proposal = r.scalar("proposal");
     s.out_index = static_cast<int>(r.integer("out_index"));
     predictor.restore(r);
-    const std::vector<double> tot = r.doubles("run.totals", 4);
+    const std::vector<double> tot = r.doubles("run.totals", 5);
     sum.total.wall = tot[0];
     sum.total.solid = tot[1];
     sum.total.fluid = tot[2];
     sum.total.coupler = tot[3];
+    sum.total.output = tot[4];
     sum.cycles = s.cycle - 1;
     sum.time = s.time;
     if (s.time >= cfg.t_end * (1.0 - 1e-14))
@@ -182,8 +210,9 @@ struct Loop {
     return s;
   }
 
-  // Asks both solvers for their parts of set n, writes its own, and completes the set with its manifest only when
-  // both have confirmed; older sets beyond cfg.checkpoint.keep are removed.
+  // Asks both solvers for their parts of set n; once both have confirmed, closes cycle n's timing (its row is then
+  // part of the set) and, as work of cycle n + 1, writes its own part and completes the set with its manifest;
+  // older sets beyond cfg.checkpoint.keep are removed.
   void write_checkpoint(long n, double t, double proposal, int out_index) {
     std::filesystem::path dir;
     try {
@@ -191,7 +220,24 @@ struct Loop {
     } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
     pb::Envelope req = envelope(hub, n, t);
     req.mutable_checkpoint_request()->set_directory(dir.string());
+    const double phase_start = now_s();
+    const Work before_f{hub.peer(Role::Fluid).busy, hub.peer(Role::Fluid).output},
+        before_s{hub.peer(Role::Solid).busy, hub.peer(Role::Solid).output};
     send_both(req);
+    const auto done = hub.expect_both(pb::Envelope::kCheckpointWritten, n);
+    // The parts' writing is output, not steps; other work reported in the phase (the pipelined fluid's step after
+    // its proposal) stays a step and, on the phase's critical path before the output, is not counted twice.
+    const auto output_in_phase = [&](Role r, const Work& before) {
+      const double out = hub.peer(r).output - before.output;
+      return std::pair{Work{out, out}, hub.peer(r).busy - before.busy - out};
+    };
+    const auto [out_f, steps_f] = output_in_phase(Role::Fluid, before_f);
+    const auto [out_s, steps_s] = output_in_phase(Role::Solid, before_s);
+    ck_f = out_f;
+    ck_s = out_s;
+    ck_wall = std::max(0.0, now_s() - phase_start - std::max(steps_f, steps_s));
+    open_timing(n + 1);
+    carry = 0;  // the solvers' snapshots of cycle n were reported in the phase
     work([&] {
       checkpoint::PartWriter w(dir / kCouplerPart, "coupler");
       w.put_integer("cycle", n);
@@ -200,12 +246,10 @@ struct Loop {
       w.put_integer("out_index", out_index);
       predictor.save(w);
       history.save(w);
-      const double tot[4] = {sum.total.wall, sum.total.solid, sum.total.fluid, sum.total.coupler};
-      w.put("run.totals", std::span<const double>(tot, 4));
+      const double tot[5] = {sum.total.wall, sum.total.solid, sum.total.fluid, sum.total.coupler, sum.total.output};
+      w.put("run.totals", std::span<const double>(tot, 5));
       w.commit();
-    });
-    const auto done = hub.expect_both(pb::Envelope::kCheckpointWritten, n);
-    work([&] {
+
       nlohmann::json m = checkpoint::scene_record(ck.scene_file, ck.overrides);
       m["parts"] = {kCouplerPart, done[0].checkpoint_written().part(), done[1].checkpoint_written().part()};
       m["scene_hash"] = ck.scene_hash;
@@ -227,8 +271,11 @@ struct Loop {
     const auto output = [&](long n) {
       pb::Envelope o = envelope(hub, n, t);
       o.mutable_output_request()->set_index(out_index++);
+      if (output_sent < 0) output_sent = now_s();
       send_both(o);
-      work([&] { history.snapshot(n, t, last_faces, last_states); });
+      const double began = now_s();
+      history.snapshot(n, t, last_faces, last_states);
+      own_output += now_s() - began;
     };
     for (long n = start.cycle;; ++n) {
       const double t_prev = t;

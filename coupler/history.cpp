@@ -31,7 +31,7 @@ History::History(const std::filesystem::path& dir, const checkpoint::PartReader*
                  "cycle,time,dt,force_x,force_y,force_z,velocity_x,velocity_y,velocity_z,centre_x,centre_y,centre_z,"
                  "pressure\n",
                  resume, "interface_history")),
-      timing_(open(dir / "timing.csv", "cycle,wall,solid,fluid,coupler,comm\n", resume, "timing")),
+      timing_(open(dir / "timing.csv", "cycle,wall,solid,fluid,coupler,output,comm\n", resume, "timing")),
       interface_(dir, "interface") {
   if (resume) {
     try {
@@ -69,9 +69,14 @@ void History::record(long cycle, double time, double dt, const coupling::Faces& 
              centre[1] * inv, centre[2] * inv, pressure * inv));
 }
 
+double output_on_path(const CycleTiming& t, double solid_out, double fluid_out) {
+  const double steps = t.steps();
+  return std::max({solid_out + t.solid, fluid_out + t.fluid, steps}) - steps;
+}
+
 void History::record_timing(long cycle, const CycleTiming& t) {
-  append(timing_,
-         fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid, t.coupler, t.comm()));
+  append(timing_, fmt::format("{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", cycle, t.wall, t.solid, t.fluid,
+                              t.coupler, t.output, t.comm()));
 }
 
 void History::progress(long cycle, double time, double t_end, double dt, bool force) {

@@ -1,9 +1,11 @@
 // Per-cycle records of a coupled run in the output directory:
 //   interface_history.csv  cycle, time [s], dt [s], force on the solid F = -sum p_face A n [N] (x, y, z),
 //                          area-weighted mean face velocity [m/s] and centre [m] (x, y, z), mean face pressure [Pa]
-//   timing.csv             cycle, wall [s] (DtDecision n sent .. DtDecision n+1 sent), solid busy, fluid busy
-//                          (work reported with the messages received in that window), coupler work
-//                          (interface conditions, history, snapshots), communication/wait [s] (CycleTiming::comm)
+//   timing.csv             cycle, wall [s] (DtDecision n sent .. DtDecision n+1 sent, or the end of cycle n's
+//                          checkpoint), solid and fluid step work (reported with the messages received in that
+//                          window, outputs excluded), coupler work (interface conditions, history, snapshots),
+//                          output (the solvers' snapshots and checkpoint parts on the critical path),
+//                          communication/wait [s] (CycleTiming::comm)
 //   progress.txt           one line "cycle time t_end", replaced at most twice a second (the launcher reads it)
 //   interface_NNNNNN.h5 + interface.xmf   at every output request: the interface faces (segments in 2D, quads
 //                          in 3D, as the solid sent them) with cell fields pressure, normal_velocity (u_I . n),
@@ -24,11 +26,18 @@ namespace cosim::coupler {
 
 struct CycleTiming {
   double wall = 0, solid = 0, fluid = 0, coupler = 0;
+  double output = 0;        // snapshots and checkpoint parts on the cycle's critical path (output_on_path)
   bool overlapped = false;  // pipelined scheme: the solid's step runs during the fluid's
-  // Everything that is not solver or coupler work: sequential, wall - solid - fluid - coupler; pipelined, the
-  // solvers overlap, so only the longer of the two is on the critical path.
-  double comm() const { return wall - coupler - (overlapped ? std::max(solid, fluid) : solid + fluid); }
+  // The solvers' steps on the critical path: sequential, one after the other; pipelined, they overlap.
+  double steps() const { return overlapped ? std::max(solid, fluid) : solid + fluid; }
+  // Everything that is not solver, output or coupler work: communication and waiting.
+  double comm() const { return wall - coupler - output - steps(); }
 };
+
+// The wall time outputs add to a cycle whose solvers stepped for `t.solid`, `t.fluid` (their outputs excluded) and
+// wrote outputs for `solid_out`, `fluid_out` at its start: each solver's output precedes its own step, both
+// solvers write at once, and the critical path is at least each solver's output plus its step.
+double output_on_path(const CycleTiming& t, double solid_out, double fluid_out);
 
 class History {
  public:

@@ -181,6 +181,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     problem = coupling::validate_sample_pressures(e->samples(), p.phase_min_pressure, p.phase_names);
   if (!problem.empty()) fail_peer(known, "sent an invalid message: " + problem);
   p.busy += std::max(0.0, h.busy_seconds());
+  p.output += std::clamp(h.output_seconds(), 0.0, std::max(0.0, h.busy_seconds()));
   out = {known, std::move(*e)};
   return true;
 }

@@ -44,6 +44,7 @@ struct Peer {
   std::vector<double> phase_min_pressure;        // [Pa] per phase (fluid, optional)
   double last_seen = 0;                          // steady clock [s]
   double busy = 0;                               // sum of Header.busy_seconds received [s]
+  double output = 0;                             // of which Header.output_seconds (snapshots, checkpoints) [s]
   double longest_answer = 0;                     // the longest wait for one of its data messages [s]
   coupling::pb::Envelope hello, welcome;         // kept for the transcript
   std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"

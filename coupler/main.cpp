@@ -43,11 +43,9 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
   j["message"] = s.message;
   j["cycles"] = s.cycles;
   j["time"] = s.time;
-  j["per_cycle_seconds"] = {{"wall", s.total.wall / n},
-                            {"solid", s.total.solid / n},
-                            {"fluid", s.total.fluid / n},
-                            {"coupler", s.total.coupler / n},
-                            {"comm", s.total.comm() / n}};
+  j["per_cycle_seconds"] = {{"wall", s.total.wall / n},     {"solid", s.total.solid / n},
+                            {"fluid", s.total.fluid / n},   {"coupler", s.total.coupler / n},
+                            {"output", s.total.output / n}, {"comm", s.total.comm() / n}};
   j["comm_fraction"] = s.total.wall > 0 ? s.total.comm() / s.total.wall : 0.0;
   io::write_file_atomically(dir / "coupler_summary.json", j.dump(2) + "\n");  // whole, or the earlier one
 }
@@ -137,7 +135,7 @@ int main(int argc, char** argv) {
   std::optional<checkpoint::PartReader> restart_part;
   if (!restart.empty()) {
     try {  // its cycle is the one both solvers' Hellos must name
-      restart_part.emplace(std::filesystem::path(restart) / coupler::kCouplerPart, "coupler");
+      restart_part.emplace(checkpoint::open_verified_part(restart, coupler::kCouplerPart, "coupler"));
       ho.restarted_from = restart_part->integer("cycle");
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", restart, e.what());

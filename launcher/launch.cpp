@@ -226,7 +226,13 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
 std::optional<fs::path> restart_set_for(const LaunchOptions& opt, const fs::path& root) {
   checkpoint::SetInfo set;
   try {
-    set = checkpoint::find_set(root, opt.restart_from >= 0 ? std::optional<long>(opt.restart_from) : std::nullopt);
+    // Every part is checked against its manifest (size, SHA-256, cycle) before anything starts; without --from a
+    // set that fails is passed over, by name, for the newest one that verifies.
+    const checkpoint::SetChoice choice =
+        checkpoint::choose_set(root, opt.restart_from >= 0 ? std::optional<long>(opt.restart_from) : std::nullopt);
+    for (const std::string& why : choice.skipped)
+      std::cerr << fmt::format("cosim: --restart: skipping a checkpoint set that cannot be used: {}\n", why);
+    set = choice.set;
     const config::Node was =
         config::load_string(set.manifest.value("scene", std::string()), (set.dir / "manifest.json").string(),
                             set.manifest.value("overrides", std::vector<std::string>{}));

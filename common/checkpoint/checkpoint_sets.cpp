@@ -10,6 +10,8 @@
 
 #include "common/app/version.h"
 #include "common/io/atomic_file.h"
+#include "common/io/hdf5_file.h"
+#include "common/util/sha256.h"
 
 namespace cosim::checkpoint {
 
@@ -70,6 +72,20 @@ std::string missing_part(const fs::path& dir, const nlohmann::json& parts) {
   }
   return "";
 }
+
+// The digest its writer recorded beside `part` (part_file.h), or the part's own when there is none.
+util::FileDigest recorded_digest(const fs::path& part) {
+  std::ifstream in(part.string() + kDigestSuffix);
+  std::string hex, name;
+  if (in >> hex >> name && hex.size() == 64 && name == part.filename().string()) {
+    std::error_code ec;
+    const auto bytes = fs::file_size(part, ec);
+    if (!ec) return {bytes, hex};
+  }
+  return util::sha256_of_file(part);
+}
+
+std::string set_name(const fs::path& dir) { return dir.filename().string(); }
 }  // namespace
 
 void write_manifest(const fs::path& dir, long cycle, double time, nlohmann::json m) {
@@ -77,6 +93,12 @@ void write_manifest(const fs::path& dir, long cycle, double time, nlohmann::json
     throw std::invalid_argument("write_manifest: the manifest must list its parts");
   if (const std::string part = missing_part(dir, m["parts"]); !part.empty())
     throw std::runtime_error(fmt::format("{}: part {} is missing: the set is not complete", dir.string(), part));
+  nlohmann::json sums = nlohmann::json::object();
+  for (const auto& part : m["parts"]) {
+    const util::FileDigest d = recorded_digest(dir / part.get<std::string>());
+    sums[part.get<std::string>()] = {{"bytes", d.bytes}, {"sha256", d.sha256}};
+  }
+  m["checksums"] = sums;
   m["format"] = kSetFormat;
   m["cycle"] = cycle;
   m["time"] = time;
@@ -96,14 +118,82 @@ SetInfo read_set(const fs::path& dir) {
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: unreadable: {}", file.string(), e.what()));
   }
-  if (s.manifest.value("format", "") != kSetFormat)
-    throw std::runtime_error(fmt::format("{}: not a checkpoint manifest (format {})", file.string(),
-                                         s.manifest.value("format", std::string("missing"))));
-  s.cycle = s.manifest.value("cycle", -1L);
-  s.time = s.manifest.value("time", 0.0);
-  if (const std::string part = missing_part(dir, s.manifest.value("parts", nlohmann::json::array())); !part.empty())
+  if (!s.manifest.is_object())
+    throw std::runtime_error(fmt::format("{}: not a checkpoint manifest (a JSON object expected)", file.string()));
+  const std::string format = s.manifest.value("format", std::string("missing"));
+  if (format != kSetFormat)
+    throw std::runtime_error(fmt::format("{}: not a checkpoint manifest of this version (format {}, expected {}{})",
+                                         file.string(), format, kSetFormat,
+                                         format == "cosim-checkpoint-set-1" ? ": an older set without checksums" : ""));
+  const auto& cycle = s.manifest["cycle"];
+  const auto& parts = s.manifest["parts"];
+  const auto& sums = s.manifest["checksums"];
+  if (!cycle.is_number_integer() || !s.manifest["time"].is_number() || !parts.is_array() || parts.empty() ||
+      !sums.is_object())
+    throw std::runtime_error(
+        fmt::format("{}: a damaged manifest (cycle, time, parts and checksums expected)", file.string()));
+  s.cycle = cycle.get<long>();
+  s.time = s.manifest["time"].get<double>();
+  // The directory is named for the cycle the set was written at: a manifest that says otherwise was edited.
+  if (set_name(dir) != fmt::format("{:09}", s.cycle))
+    throw std::runtime_error(
+        fmt::format("{}: says cycle {}, but the set is that of cycle {}", file.string(), s.cycle, set_name(dir)));
+  for (const auto& part : parts) {
+    if (!part.is_string() || !sums.contains(part.get<std::string>()))
+      throw std::runtime_error(fmt::format("{}: part {} has no checksum", file.string(), part.dump()));
+  }
+  if (const std::string part = missing_part(dir, parts); !part.empty())
     throw std::runtime_error(fmt::format("{}: names part {}, which is missing", file.string(), part));
   return s;
+}
+
+void verify_part(const SetInfo& s, const std::string& part) {
+  const fs::path file = s.dir / part;
+  const auto& sum = s.manifest.at("checksums").at(part);
+  const std::uint64_t bytes = sum.value("bytes", std::uint64_t{0});
+  const std::string sha = sum.value("sha256", std::string());
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(file, ec);
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot read: {}", file.string(), ec.message()));
+  if (size != bytes)
+    throw std::runtime_error(fmt::format("{}: {} bytes, the manifest recorded {}: the part is truncated or replaced",
+                                         file.string(), size, bytes));
+  const util::FileDigest d = util::sha256_of_file(file);
+  if (d.sha256 != sha)
+    throw std::runtime_error(
+        fmt::format("{}: SHA-256 {}, the manifest recorded {}: the part is corrupt", file.string(), d.sha256, sha));
+  // The cycle the part holds: a manifest moved to another set, or a part copied from one, is refused. Our parts
+  // (HDF5) must hold it; an outside solver's JSON part is checked when it has one; other formats by checksum only.
+  std::optional<std::int64_t> held;
+  try {
+    if (file.extension() == ".h5") {
+      const io::Hdf5File h5(file, io::Hdf5File::Mode::ReadOnly);
+      const std::vector<std::int64_t> c = h5.read_int64_attribute("/", "cycle");
+      held = c.size() == 1 ? c[0] : -1;
+    } else if (file.extension() == ".json") {
+      std::ifstream in(file);
+      const nlohmann::json j = nlohmann::json::parse(in);
+      if (j.is_object() && j.contains("cycle")) held = j["cycle"].get<std::int64_t>();
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: not a readable checkpoint part: {}", file.string(), e.what()));
+  }
+  if (held && *held != s.cycle)
+    throw std::runtime_error(
+        fmt::format("{}: holds cycle {}, the manifest says cycle {}", file.string(), *held, s.cycle));
+}
+
+void verify_set(const SetInfo& s) {
+  for (const auto& part : s.manifest.at("parts")) verify_part(s, part.get<std::string>());
+}
+
+PartReader open_verified_part(const fs::path& dir, const std::string& file, std::string_view kind) {
+  const SetInfo s = read_set(dir);
+  bool listed = false;
+  for (const auto& part : s.manifest.at("parts")) listed = listed || part.get<std::string>() == file;
+  if (!listed) throw std::runtime_error(fmt::format("{}: lists no part {}", (dir / kManifestName).string(), file));
+  verify_part(s, file);
+  return PartReader(dir / file, kind);
 }
 
 namespace {
@@ -132,19 +222,33 @@ std::vector<SetInfo> complete_sets(const fs::path& root) {
   return out;
 }
 
-SetInfo find_set(const fs::path& root, std::optional<long> cycle) {
-  if (cycle) return read_set(set_path(root, *cycle));
-  const std::vector<SetInfo> sets = complete_sets(root);
-  if (sets.empty()) {
-    const auto dirs = set_dirs(root);
-    throw std::runtime_error(dirs.empty()
-                                 ? fmt::format("{}: no checkpoint sets (the run wrote none: coupling.checkpoint or "
-                                               "fluid.checkpoint in the scene turns them on)",
-                                               root.string())
-                                 : fmt::format("{}: {} checkpoint set(s), none complete", root.string(), dirs.size()));
+SetChoice choose_set(const fs::path& root, std::optional<long> cycle) {
+  if (cycle) {
+    SetChoice c{read_set(set_path(root, *cycle)), {}};
+    verify_set(c.set);
+    return c;
   }
-  return sets.back();
+  const auto dirs = set_dirs(root);
+  if (dirs.empty())
+    throw std::runtime_error(
+        fmt::format("{}: no checkpoint sets (the run wrote none: coupling.checkpoint or "
+                    "fluid.checkpoint in the scene turns them on)",
+                    root.string()));
+  SetChoice c;
+  for (auto it = dirs.rbegin(); it != dirs.rend(); ++it) {
+    try {
+      c.set = read_set(it->second);
+      verify_set(c.set);
+      return c;
+    } catch (const std::exception& e) { c.skipped.push_back(e.what()); }
+  }
+  std::string why;
+  for (const auto& s : c.skipped) why += "\n  " + s;
+  throw std::runtime_error(
+      fmt::format("{}: {} checkpoint set(s), none complete and intact:{}", root.string(), dirs.size(), why));
 }
+
+SetInfo find_set(const fs::path& root, std::optional<long> cycle) { return choose_set(root, cycle).set; }
 
 void clear(const fs::path& root) {
   for (const auto& [cycle, dir] : set_dirs(root)) {

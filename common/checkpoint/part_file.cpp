@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/io/atomic_file.h"
+#include "common/util/sha256.h"
 
 namespace cosim::checkpoint {
 
@@ -45,8 +46,12 @@ void PartWriter::put_integer(const std::string& name, std::int64_t v) { h5_.writ
 
 void PartWriter::commit() {
   h5_.close();
+  // The digest of the bytes as written, before they are published: what a later reader must find.
+  const util::FileDigest d = util::sha256_of_file(tmp_);
   io::commit_file(tmp_, path_);
   committed_ = true;
+  io::write_file_atomically(path_.string() + kDigestSuffix,
+                            fmt::format("{}  {}\n", d.sha256, path_.filename().string()));
 }
 
 PartReader::PartReader(fs::path path, std::string_view kind)

@@ -2,7 +2,9 @@
 //   PartWriter w(set / "fluid.h5", "fluid");  w.put("U", U);  w.put_scalar("time", t);  w.commit();
 //   PartReader r(set / "fluid.h5", "fluid");  U = r.doubles("U", U.size());  t = r.scalar("time");
 // The writer fills <file>.tmp and publishes it whole (fsync + rename, io::commit_file): a part is either complete
-// or absent. The reader checks the format, the kind and every array's length, naming the file and the entry.
+// or absent; beside it <file>.sha256 (sha256sum's format) records the digest of what was written, for the set's
+// manifest (checkpoint_sets.h). The reader checks the format, the kind and every array's length, naming the file
+// and the entry; open_verified_part() first checks the file against its set's manifest.
 // Layout: root attributes format = "cosim-checkpoint-1", kind, and one attribute per scalar; one dataset per array
 // (double, int64 or uint8; texts are uint8 datasets).
 #pragma once
@@ -20,6 +22,7 @@
 namespace cosim::checkpoint {
 
 inline constexpr std::string_view kPartFormat = "cosim-checkpoint-1";
+inline constexpr const char* kDigestSuffix = ".sha256";
 
 class PartWriter {
  public:
@@ -36,7 +39,7 @@ class PartWriter {
   void put_text(const std::string& name, std::string_view text);
   void put_scalar(const std::string& name, double v);
   void put_integer(const std::string& name, std::int64_t v);
-  // Closes and publishes the file; throws std::runtime_error (disk full: the part stays absent).
+  // Closes and publishes the file with its digest file; throws std::runtime_error (disk full: the part stays absent).
   void commit();
 
  private:

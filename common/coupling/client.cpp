@@ -30,11 +30,15 @@ struct Client::Impl {
   double time = 0.0;
   double last_return = now_s();  // end of the previous protocol call: the solver works from here on
   double busy = 0;               // solver work since the previous send, up to last_return [s]
+  double output = 0;             // of which writing outputs (add_output_seconds) [s]
 
   // Header.busy_seconds: the solver's work since its previous message, over all protocol calls in between.
   void send(pb::Envelope& e) {
-    e.mutable_header()->set_busy_seconds(busy + (now_s() - last_return));
+    const double b = busy + (now_s() - last_return);
+    e.mutable_header()->set_busy_seconds(b);
+    e.mutable_header()->set_output_seconds(std::min(output, b));
     busy = 0;
+    output = 0;
     if (!data.send({encode(e)}, 5000))
       throw PeerLost(
           fmt::format("{}: cannot send {} to the coupler at {}", role_name(opt.role), body_name(e), opt.endpoint));
@@ -209,6 +213,10 @@ void Client::confirm_checkpoint(const std::string& part, std::uint64_t bytes) {
   e.mutable_checkpoint_written()->set_part(part);
   e.mutable_checkpoint_written()->set_bytes(bytes);
   impl_->send(e);
+}
+
+void Client::add_output_seconds(double seconds) {
+  if (seconds > 0) impl_->output += seconds;
 }
 
 void Client::report_error(const std::string& reason) noexcept {

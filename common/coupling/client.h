@@ -67,6 +67,10 @@ class Client {
   void propose_dt(double dt);                // both, once per cycle [s]
   // Answers a Checkpoint directive: this solver's part `part` (a file name in the set directory) is written.
   void confirm_checkpoint(const std::string& part, std::uint64_t bytes);
+  // Of the work since the last message, `seconds` went into writing outputs (a snapshot, a checkpoint part): sent
+  // as Header.output_seconds with the next message, so that the coupler's timing keeps it apart from the solver's
+  // steps (outputs of both solvers run at the same time; their steps do not in the sequential scheme).
+  void add_output_seconds(double seconds);
 
   // Tells the coupler that this solver cannot go on (best effort, never throws).
   void report_error(const std::string& reason) noexcept;

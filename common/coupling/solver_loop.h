@@ -87,13 +87,20 @@ SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycl
         spdlog::info("coupler: {}", d.reason);
         break;
       }
+      const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      };
       if (d.kind == Directive::Kind::Output) {
+        const auto t_out = std::chrono::steady_clock::now();
         output(d);
+        client.add_output_seconds(seconds_since(t_out));
         ++r.snapshots;
         continue;
       }
       if (d.kind == Directive::Kind::Checkpoint) {
+        const auto t_out = std::chrono::steady_clock::now();
         const std::string part = checkpoint(d);
+        client.add_output_seconds(seconds_since(t_out));
         std::error_code ec;
         const auto bytes = std::filesystem::file_size(std::filesystem::path(d.directory) / part, ec);
         client.confirm_checkpoint(part, ec ? 0 : bytes);

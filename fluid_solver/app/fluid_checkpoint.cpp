@@ -1,5 +1,6 @@
 #include "fluid_solver/app/fluid_checkpoint.h"
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/output_resume.h"
 #include "common/checkpoint/part_file.h"
 
@@ -22,7 +23,7 @@ std::string write_fluid_part(const std::filesystem::path& dir, const FluidSimula
 
 FluidRunState read_fluid_part(const std::filesystem::path& set, FluidSimulation& sim, io::SnapshotSeries& series,
                               coupled::CoupledBoundary* boundary) {
-  const checkpoint::PartReader r(set / kFluidPart, "fluid");
+  const checkpoint::PartReader r = checkpoint::open_verified_part(set, kFluidPart, "fluid");
   FluidRunState run;
   run.cycle = r.integer("cycle");
   run.time = r.scalar("time");

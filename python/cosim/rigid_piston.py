@@ -21,6 +21,7 @@ import math
 import os
 import sys
 
+from .checkpoint import CorruptCheckpoint, read_verified_part
 from .client import Client, CouplingError, scene_hash
 from .scene import load_scene
 
@@ -120,9 +121,10 @@ def main(argv=None):
     cycle, t0 = 0, 0.0
     if a.restart:  # the state of the set's cycle; piston.csv cut back to where it was then
         try:
-            with open(os.path.join(a.restart, PART)) as f:
-                ck = json.load(f)
-        except (OSError, ValueError) as e:
+            ck = json.loads(read_verified_part(a.restart, PART))
+            if ck["cycle"] != json.load(open(os.path.join(a.restart, "manifest.json")))["cycle"]:
+                raise ValueError("%s holds cycle %s, not the manifest's" % (PART, ck["cycle"]))
+        except (OSError, ValueError, KeyError, CorruptCheckpoint) as e:
             print(tag + "error: --restart %s: %s" % (a.restart, e), file=sys.stderr)
             return 2
         cycle, t0 = ck["cycle"], ck["time"]

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/coupling/client.h"
 #include "common/coupling/scene_hash.h"
 #include "common/coupling/solver_loop.h"
@@ -32,7 +33,7 @@ int run_solid_coupled(const RunOptions& opt) {
   SolidRunState restored;
   if (!opt.restart.empty()) {
     try {
-      part.emplace(opt.restart / kSolidPart, "solid");
+      part.emplace(checkpoint::open_verified_part(opt.restart, kSolidPart, "solid"));
       restored = read_solid_part(*part, *sim, series);
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", opt.restart.string(), e.what());

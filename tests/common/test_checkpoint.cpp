@@ -1,14 +1,18 @@
 // Tests for common/checkpoint: part files (round trip, length checks, a part is whole or absent), checkpoint sets
-// (complete only with every part and the manifest, newest chosen, pruning), when a set is due, and the outputs a
-// restart continues (tables cut back to the checkpoint, snapshot series resumed).
+// (complete only with every part and the manifest, newest chosen, pruning), their integrity (SHA-256 against the
+// standard's vectors and sha256sum, a flipped bit, a truncated part, an edited or missing manifest, a part of
+// another cycle), when a set is due, and the outputs a restart continues (tables cut back to the checkpoint,
+// snapshot series resumed).
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/output_resume.h"
 #include "common/checkpoint/part_file.h"
+#include "common/util/sha256.h"
 #include "tests/support/scratch_dir.h"
 
 namespace fs = std::filesystem;
@@ -204,4 +208,134 @@ TEST(CheckpointOutputs, ASnapshotSeriesContinuesAfterItsCheckpointedEntries) {
   fs::remove(dir / "f_000000.h5");
   cosim::io::SnapshotSeries again(dir, "f");
   EXPECT_THROW(resume_series(PartReader(dir / "fluid.h5", "fluid"), "f", again), std::runtime_error);
+}
+
+namespace {
+// Flips one bit of `file` at byte `at` (from the end when negative), as a bad sector or a stray write would.
+void flip_bit(const fs::path& file, long at) {
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekg(0, std::ios::end);
+  const long size = f.tellg();
+  const long pos = at >= 0 ? at : size + at;
+  f.seekg(pos);
+  char c = 0;
+  f.read(&c, 1);
+  c ^= 0x10;
+  f.seekp(pos);
+  f.write(&c, 1);
+}
+
+std::string error_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) { return e.what(); }
+  return "";
+}
+}  // namespace
+
+TEST(Sha256, MatchesTheStandardsTestVectorsAndSha256sum) {
+  const auto hex = [](const std::string& text) {
+    cosim::util::Sha256 h;
+    h.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    return h.hex_digest();
+  };
+  // FIPS 180-4 examples (NIST CSRC): "abc", the two-block message, the empty string, a million 'a'.
+  EXPECT_EQ(hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(hex(std::string(1000000, 'a')), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  // Every length around the block and padding boundaries, fed in uneven pieces, against coreutils' sha256sum.
+  const fs::path dir = cosim::test::scratch_path("sha256");
+  fs::create_directories(dir);
+  for (std::size_t n : {1ul, 55ul, 56ul, 63ul, 64ul, 65ul, 119ul, 120ul, 128ul, 1048577ul + 3}) {
+    std::string text(n, '\0');
+    for (std::size_t i = 0; i < n; ++i) text[i] = static_cast<char>((i * 7919 + n) % 251);
+    const fs::path f = dir / std::to_string(n);
+    std::ofstream(f, std::ios::binary) << text;
+    ASSERT_EQ(std::system(("sha256sum " + f.string() + " > " + f.string() + ".sum").c_str()), 0);
+    const std::string expected = slurp(f.string() + ".sum").substr(0, 64);
+    EXPECT_EQ(cosim::util::sha256_of_file(f).sha256, expected) << n << " bytes";
+    EXPECT_EQ(cosim::util::sha256_of_file(f).bytes, n);
+    cosim::util::Sha256 h;
+    for (std::size_t at = 0; at < n;) {
+      const std::size_t take = std::min<std::size_t>(n - at, 1 + (at * 31) % 97);
+      h.update(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()) + at, take));
+      at += take;
+    }
+    EXPECT_EQ(h.hex_digest(), expected) << n << " bytes in pieces";
+  }
+}
+
+TEST(CheckpointIntegrity, TheManifestRecordsEachPartsChecksumAndAFlippedBitIsRefusedByName) {
+  const fs::path root = cosim::test::scratch_path("ck_integrity");
+  write_set(root, 100, true);
+  write_set(root, 200, true);
+  const SetInfo s = read_set(set_path(root, 200));
+  EXPECT_EQ(s.manifest["format"], "cosim-checkpoint-set-2");
+  const fs::path part = set_path(root, 200) / "coupler.h5";
+  EXPECT_EQ(s.manifest["checksums"]["coupler.h5"]["sha256"], cosim::util::sha256_of_file(part).sha256);
+  EXPECT_EQ(s.manifest["checksums"]["coupler.h5"]["bytes"], fs::file_size(part));
+  EXPECT_NO_THROW(verify_set(s));
+  EXPECT_NO_THROW(open_verified_part(set_path(root, 200), "fluid.h5", "fluid"));
+  // One bit, in the middle of the data: the part is refused, the newest intact set is chosen and the refusal said.
+  flip_bit(part, -100);
+  std::string why = error_of([&] { verify_set(read_set(set_path(root, 200))); });
+  EXPECT_NE(why.find("coupler.h5: SHA-256"), std::string::npos) << why;
+  EXPECT_NE(why.find("the part is corrupt"), std::string::npos) << why;
+  why = error_of([&] { open_verified_part(set_path(root, 200), "coupler.h5", "coupler"); });
+  EXPECT_NE(why.find("the part is corrupt"), std::string::npos) << why;
+  const SetChoice c = choose_set(root);
+  EXPECT_EQ(c.set.cycle, 100);
+  ASSERT_EQ(c.skipped.size(), 1u);
+  EXPECT_NE(c.skipped[0].find("000000200/coupler.h5"), std::string::npos) << c.skipped[0];
+  why = error_of([&] { choose_set(root, 200); });  // asked for by number: refused, not replaced
+  EXPECT_NE(why.find("the part is corrupt"), std::string::npos) << why;
+  // A truncated part.
+  fs::resize_file(set_path(root, 100) / "fluid.h5", fs::file_size(set_path(root, 100) / "fluid.h5") - 1);
+  why = error_of([&] { choose_set(root); });
+  EXPECT_NE(why.find("none complete and intact"), std::string::npos) << why;
+  EXPECT_NE(why.find("the part is truncated or replaced"), std::string::npos) << why;
+}
+
+TEST(CheckpointIntegrity, AnEditedOrMissingManifestAndAPartOfAnotherCycleAreNamed) {
+  const fs::path root = cosim::test::scratch_path("ck_manifest");
+  write_set(root, 100, true);
+  write_set(root, 200, true);
+  write_set(root, 300, true);
+  write_set(root, 400, true);
+  // The manifest of 400 edited to say 390: the set's directory and its parts say 400.
+  {
+    nlohmann::json m = nlohmann::json::parse(slurp(set_path(root, 400) / kManifestName));
+    m["cycle"] = 390;
+    std::ofstream(set_path(root, 400) / kManifestName) << m.dump();
+  }
+  // The manifest of 300 emptied, that of 200 deleted.
+  std::ofstream(set_path(root, 300) / kManifestName, std::ios::trunc);
+  fs::remove(set_path(root, 200) / kManifestName);
+  const SetChoice c = choose_set(root);
+  EXPECT_EQ(c.set.cycle, 100);
+  ASSERT_EQ(c.skipped.size(), 3u);
+  EXPECT_NE(c.skipped[0].find("says cycle 390, but the set is that of cycle 000000400"), std::string::npos)
+      << c.skipped[0];
+  EXPECT_NE(c.skipped[1].find("000000300/manifest.json: unreadable"), std::string::npos) << c.skipped[1];
+  EXPECT_NE(c.skipped[2].find("000000200: no manifest.json"), std::string::npos) << c.skipped[2];
+  // A part whose own cycle is not the set's (copied in from another set), with a manifest made for it.
+  const fs::path dir = prepare_set(root, 500);
+  for (const char* kind : {"coupler", "fluid"}) {
+    PartWriter w(dir / (std::string(kind) + ".h5"), kind);
+    w.put_integer("cycle", std::string(kind) == "fluid" ? 533 : 500);
+    w.commit();
+  }
+  write_manifest(dir, 500, 50, {{"parts", {"coupler.h5", "fluid.h5"}}});
+  const std::string why = error_of([&] { choose_set(root, 500); });
+  EXPECT_NE(why.find("fluid.h5: holds cycle 533, the manifest says cycle 500"), std::string::npos) << why;
+  // A set of the format before checksums is refused as such.
+  {
+    nlohmann::json m = nlohmann::json::parse(slurp(set_path(root, 100) / kManifestName));
+    m["format"] = "cosim-checkpoint-set-1";
+    m.erase("checksums");
+    std::ofstream(set_path(root, 100) / kManifestName) << m.dump();
+  }
+  EXPECT_NE(error_of([&] { choose_set(root, 100); }).find("an older set without checksums"), std::string::npos);
 }
