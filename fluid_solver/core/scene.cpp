@@ -4,6 +4,7 @@
 #include "fluid_solver/core/memory_estimate.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ Boundary read_boundary(Node& n, const std::string& key, const std::vector<Phase>
     b.kind = BoundaryKind::Inflow;
     if (!sec) n.fail(key, "a section {type: inflow, state: {...}} for an inflow boundary");
     Node st = sec->child("state");
-    b.inflow = read_state(st, phases, dim);
+    b.inflow = read_state(st, phases, dim, true);
   }
   if (sec) sec->finish();
   return b;
@@ -59,6 +60,8 @@ Region read_region(Node& n, const std::vector<Phase>& phases, int dim) {
     r.shape = Region::Shape::Box;
     r.a = read_point(*box, "lower", dim);
     r.b = read_point(*box, "upper", dim);
+    for (int d = 0; d < dim; ++d)
+      if (!(r.b[d] >= r.a[d])) box->fail("upper", "upper >= lower in every direction");
     box->finish();
     ++shapes;
   }
@@ -73,6 +76,8 @@ Region read_region(Node& n, const std::vector<Phase>& phases, int dim) {
     r.shape = Region::Shape::HalfSpace;
     r.a = read_point(*hs, "point", dim);
     r.b = read_point(*hs, "normal", dim);
+    if (std::all_of(r.b.begin(), r.b.end(), [](double c) { return c == 0.0; }))
+      hs->fail("normal", "a normal that is not zero (it points into the region)");
     hs->finish();
     ++shapes;
   }
@@ -81,6 +86,48 @@ Region read_region(Node& n, const std::vector<Phase>& phases, int dim) {
   r.value = read_state(st, phases, dim);
   n.finish();
   return r;
+}
+
+// Whether the region contains the centre of at least one cell of the mesh (initial_state.h tests the centres).
+// Per axis the candidates are both end cells and the three cells nearest the region's centre, box middle or
+// half-space point: they hold the centre nearest a sphere's centre or a box's middle (a box or sphere holds a centre
+// if it holds that one), and every corner of the lattice (the farthest a half-space reaches).
+bool covers_a_cell(const Region& r, const FluidScene& s) {
+  std::array<std::vector<int>, 3> cand;
+  std::array<double, 3> dx{1, 1, 1};
+  for (int d = 0; d < 3; ++d) {
+    if (d >= s.dim) {
+      cand[d] = {0};
+      continue;
+    }
+    const int n = s.cells[d];
+    dx[d] = (s.upper[d] - s.lower[d]) / n;  // as Grid
+    const double target = r.shape == Region::Shape::Box ? 0.5 * (r.a[d] + r.b[d]) : r.a[d];
+    const double at = std::clamp((target - s.lower[d]) / dx[d] - 0.5, -1.0, static_cast<double>(n));
+    const int i = static_cast<int>(std::lround(at));
+    for (int c : {0, n - 1, i - 1, i, i + 1}) cand[d].push_back(std::clamp(c, 0, n - 1));
+  }
+  for (int i : cand[0])
+    for (int j : cand[1])
+      for (int k : cand[2]) {
+        const std::array<int, 3> ijk{i, j, k};
+        std::array<double, 3> x{0, 0, 0};
+        for (int d = 0; d < s.dim; ++d) x[d] = s.lower[d] + (ijk[d] + 0.5) * dx[d];
+        if (r.contains(x, s.dim)) return true;
+      }
+  return false;
+}
+
+std::string region_box(const Region& r, int dim) {
+  const auto vec = [dim](const std::array<double, 3>& v) {
+    return fmt::format("[{:g}]", fmt::join(v.begin(), v.begin() + dim, ", "));
+  };
+  switch (r.shape) {
+    case Region::Shape::Box: return fmt::format("box from {} to {}", vec(r.a), vec(r.b));
+    case Region::Shape::Sphere: return fmt::format("sphere of radius {:g} at {}", r.radius, vec(r.a));
+    case Region::Shape::HalfSpace: return fmt::format("half-space through {} with normal {}", vec(r.a), vec(r.b));
+  }
+  return "region";
 }
 
 Profile read_profile(Node& n, int dim) {
@@ -183,7 +230,11 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   // phases
   auto plist = f.list("phases");
   if (plist.empty() || plist.size() > 2) f.fail("phases", "one or two phases");
-  for (auto& pn : plist) s.phases.push_back(read_phase(pn));
+  for (auto& pn : plist) {
+    s.phases.push_back(read_phase(pn));
+    if (s.phases.size() == 2 && s.phases[0].name == s.phases[1].name)
+      pn.fail("name", fmt::format("a name that differs from the first phase's, got '{}' twice", s.phases[1].name));
+  }
 
   // numerics
   if (auto num = f.optional_child("numerics")) {
@@ -313,7 +364,23 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   }
   init.skip("regions");
   if (init.has("regions"))
-    for (auto& rn : init.list("regions")) s.regions.push_back(read_region(rn, s.phases, s.dim));
+    for (auto& rn : init.list("regions")) {
+      s.regions.push_back(read_region(rn, s.phases, s.dim));
+      // A region that selects no cell centre would leave the run uniform without a word.
+      if (!covers_a_cell(s.regions.back(), s)) {
+        std::vector<double> dx(static_cast<std::size_t>(s.dim));
+        for (int d = 0; d < s.dim; ++d) dx[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+        const Region& r = s.regions.back();
+        rn.fail(r.shape == Region::Shape::Box      ? "box"
+                : r.shape == Region::Shape::Sphere ? "sphere"
+                                                   : "half_space",
+                fmt::format("a region that contains the centre of at least one cell, but the {} covers no cell "
+                            "(domain from [{:g}] to [{:g}], cells of [{:g}] m): enlarge it, move it into the "
+                            "domain or refine the mesh",
+                            region_box(r, s.dim), fmt::join(s.lower.begin(), s.lower.begin() + s.dim, ", "),
+                            fmt::join(s.upper.begin(), s.upper.begin() + s.dim, ", "), fmt::join(dx, ", ")));
+      }
+    }
   init.finish();
 
   // output

@@ -59,11 +59,51 @@ void check_reference_density(const Node& n, const Phase& ph, const PhaseValue& v
                      ph.name, ph.material, ref, given, v.rho / ref, T ? "; give rho instead of T" : ""));
 }
 
+// Physical ranges of a state's values: beyond them a number is a typo or a unit slip, and fails later as a numerical
+// failure (exit 3) instead of a scene error.
+constexpr double kMaxPressure = 1e13;    // [Pa], 10 TPa
+constexpr double kMaxDensity = 1e5;      // [kg/m^3], four times the densest element
+constexpr double kMaxTemperature = 1e9;  // [K]
+
+// A pressure of at most kMaxPressure in magnitude (p + pinf > 0 is checked with the phase); > 0 at an inflow
+// boundary, whose ghost cells feed the state in every step: a liquid in tension there cavitates, which a stiffened
+// gas cannot represent.
+config::Check<double> pressure_range(bool boundary) {
+  return [boundary](const double& v) {
+    if (boundary ? v > 0.0 && v <= kMaxPressure : std::abs(v) <= kMaxPressure) return std::string();
+    return std::string(boundary ? "a boundary pressure in (0, 1e13] Pa" : "a pressure of at most 1e13 Pa in magnitude");
+  };
+}
+config::Check<double> density_range() {
+  return [](const double& v) {
+    return v > 0.0 && v <= kMaxDensity ? std::string() : std::string("a density in (0, 1e5] kg/m^3");
+  };
+}
+config::Check<double> temperature_range() {
+  return [](const double& v) {
+    return v > 0.0 && v <= kMaxTemperature ? std::string() : std::string("a temperature in (0, 1e9] K");
+  };
+}
+
+// [A-Za-z_][A-Za-z0-9_]*, in ASCII whatever the locale.
+bool is_identifier(const std::string& s) {
+  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  if (s.empty() || !letter(s[0])) return false;
+  for (char c : s)
+    if (!letter(c) && !(c >= '0' && c <= '9')) return false;
+  return true;
+}
+
 }  // namespace
 
 Phase read_phase(Node& n) {
   Phase ph;
   ph.name = n.require<std::string>("name");
+  // The name prefixes the phase's output fields (NAME_density) and is quoted in messages.
+  if (!is_identifier(ph.name))
+    n.fail("name", fmt::format("a phase name of ASCII letters, digits and '_' that does not start with a digit (it "
+                               "names the output fields: NAME_density), got '{}'",
+                               config::printable(ph.name)));
   ph.eos = read_eos(n, ph.name, ph.material);
   if (const eos::Material* m = eos::find_material(ph.material); m && m->sg.pinf > 0.0)
     ph.reference_density = m->reference_density;  // a condensed material: its density is checked
@@ -72,13 +112,13 @@ Phase read_phase(Node& n) {
   return ph;
 }
 
-MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
+MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim, bool boundary) {
   const int np = static_cast<int>(phases.size());
   MixtureValue out(np);
-  double p = n.get<double>("p", std::nan(""));
+  double p = n.get<double>("p", std::nan(""), pressure_range(boundary));
   std::optional<double> rho, T;
-  if (n.has("rho")) rho = n.get<double>("rho", 0, config::positive());
-  if (n.has("T")) T = n.get<double>("T", 0, config::positive());
+  if (n.has("rho")) rho = n.get<double>("rho", 0, density_range());
+  if (n.has("T")) T = n.get<double>("T", 0, temperature_range());
   n.skip("rho");
   n.skip("T");
   auto vel = read_point(n, "velocity", dim, std::vector<double>(dim, 0.0), config::speed());
@@ -105,14 +145,14 @@ MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
     if (per_phase[k]) {
       Node& q = *per_phase[k];
       for (const char* k2 : {"p", "alpha", "rho", "T"}) q.skip(k2);
-      if (q.has("p")) pk = q.get<double>("p", 0);
+      if (q.has("p")) pk = q.get<double>("p", 0, pressure_range(boundary));
       if (q.has("alpha")) alpha = q.get<double>("alpha", 0, config::in_range(0.0, 1.0));
       if (q.has("rho")) {
-        rk = q.get<double>("rho", 0, config::positive());
+        rk = q.get<double>("rho", 0, density_range());
         Tk.reset();
       }
       if (q.has("T")) {
-        Tk = q.get<double>("T", 0, config::positive());
+        Tk = q.get<double>("T", 0, temperature_range());
         if (!q.has("rho")) rk.reset();
       }
       velk = read_point(q, "velocity", dim, std::vector<double>(vel.begin(), vel.begin() + dim), config::speed());
@@ -128,6 +168,10 @@ MixtureValue read_state(Node& n, const std::vector<Phase>& phases, int dim) {
     if (!phases[k].eos.admissible(v.rho, v.p))
       n.fail("p", fmt::format("p + pinf > 0 for phase '{}' (p = {:g} Pa, pinf = {:g} Pa)", phases[k].name, v.p,
                               phases[k].eos.pinf));
+    if (!rk && !density_range()(v.rho).empty())
+      n.fail("T", fmt::format("a temperature that gives phase '{}' a density in (0, 1e5] kg/m^3, but T = {:g} K at "
+                              "p = {:g} Pa gives rho = {:.4g} kg/m^3",
+                              phases[k].name, *Tk, v.p, v.rho));
     check_reference_density(n, phases[k], v, rk ? std::nullopt : Tk);
   }
   if (np > 1) {

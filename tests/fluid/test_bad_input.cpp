@@ -232,5 +232,184 @@ fluid:
   EXPECT_LE(estimate, actual);
 }
 
+// An initial region that covers no cell is refused, naming the key: upper below lower; and a box, sphere or half-space
+// that holds no cell centre at this resolution (outside the domain, or smaller than a cell between two centres), with
+// the region, the domain and the cell size (it used to run a uniform tube with exit 0). A region that reaches past
+// the domain, or holds one centre, is fine.
+TEST(SceneValidation, InitialRegionThatCoversNoCellIsRefused) {
+  const auto with_region = [](const std::string& region) {
+    return std::string(kGood) + "    regions:\n      - " + region +
+           "\n        state: {rho: 0.125, velocity: [0.0], p: 0.1}\n";
+  };
+  const std::string inverted = error_of(with_region("box: {lower: [0.7], upper: [0.2]}"));
+  EXPECT_NE(inverted.find("<scene>:9: fluid.initial.regions.0.box.upper: expected upper >= lower in every direction"),
+            std::string::npos)
+      << inverted;
+  const std::string outside = error_of(with_region("box: {lower: [2.0], upper: [3.0]}"));
+  EXPECT_NE(outside.find("<scene>:9: fluid.initial.regions.0.box: expected a region that contains the centre of at "
+                         "least one cell, but the box from [2] to [3] covers no cell (domain from [0] to [1], cells "
+                         "of [0.02] m)"),
+            std::string::npos)
+      << outside;
+  // cell centres at 0.01, 0.03, ...: a box between two of them
+  const std::string thin = error_of(with_region("box: {lower: [0.011], upper: [0.029]}"));
+  EXPECT_NE(thin.find("the box from [0.011] to [0.029] covers no cell"), std::string::npos) << thin;
+  const std::string sphere = error_of(with_region("sphere: {center: [1.5], radius: 0.4}"));
+  EXPECT_NE(sphere.find("fluid.initial.regions.0.sphere: expected a region that contains the centre of at least one "
+                        "cell, but the sphere of radius 0.4 at [1.5] covers no cell"),
+            std::string::npos)
+      << sphere;
+  const std::string half = error_of(with_region("half_space: {point: [0.995], normal: [1.0]}"));
+  EXPECT_NE(half.find("the half-space through [0.995] with normal [1] covers no cell"), std::string::npos) << half;
+  const std::string no_normal = error_of(with_region("half_space: {point: [0.5], normal: [0.0]}"));
+  EXPECT_NE(no_normal.find("fluid.initial.regions.0.half_space.normal: expected a normal that is not zero"),
+            std::string::npos)
+      << no_normal;
+  for (const char* fine : {"box: {lower: [0.5], upper: [2.0]}", "box: {lower: [0.009], upper: [0.011]}",
+                           "box: {lower: [0.01], upper: [0.01]}", "sphere: {center: [1.2], radius: 0.215}",
+                           "half_space: {point: [0.985], normal: [1.0]}", "half_space: {point: [2.0], normal: [-1.0]}"})
+    EXPECT_EQ(error_of(with_region(fine)), "") << fine;
+  // 2D, 10 x 10 cells, centres at 0.05 + 0.1 k: a circle between four centres, and one that reaches the nearest
+  const std::string two_d = R"(fluid:
+  mesh: {cells: [10, 10], lower: [0.0, 0.0], upper: [1.0, 1.0]}
+  phases: [{name: gas, eos: {type: ideal_gas, gamma: 1.4}}]
+  time: {end: 0.01}
+  initial:
+    state: {rho: 1.0, velocity: [0.0, 0.0], p: 1.0}
+    regions:
+      - sphere: {center: [0.1, 0.1], radius: 0.07}
+        state: {rho: 0.125, velocity: [0.0, 0.0], p: 0.1}
+)";
+  const std::string circle = error_of(two_d);
+  EXPECT_NE(circle.find("the sphere of radius 0.07 at [0.1, 0.1] covers no cell (domain from [0, 0] to [1, 1], "
+                        "cells of [0.1, 0.1] m)"),
+            std::string::npos)
+      << circle;
+  EXPECT_EQ(error_of(replace(two_d, "radius: 0.07", "radius: 0.071")), "");
+}
+
+// Phase names are identifiers (they name the output fields, NAME_density): an empty name, a leading digit, a space or
+// a control byte is refused, naming the key and the value with its non-printable bytes escaped; two phases differ.
+TEST(SceneValidation, PhaseNamesAreIdentifiers) {
+  for (const auto& [yaml, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"''", "''"}, {"1gas", "'1gas'"}, {"'my gas'", "'my gas'"}, {"\"gas\\x1b[31m\"", "'gas\\x1b[31m'"}}) {
+    const std::string e = error_of(replace(kGood, "name: gas", "name: " + yaml));
+    EXPECT_NE(e.find("<scene>:4: fluid.phases.0.name: expected a phase name of ASCII letters, digits and '_' that does "
+                     "not start with a digit (it names the output fields: NAME_density), got " +
+                     shown),
+              std::string::npos)
+        << yaml << ": " << e;
+    EXPECT_EQ(e.find('\x1b'), std::string::npos) << e;
+  }
+  EXPECT_EQ(error_of(replace(kGood, "name: gas", "name: _Gas_2")), "");
+  const std::string twice = error_of(R"(fluid:
+  mesh: {cells: [20], lower: [0.0], upper: [1.0]}
+  phases: [{name: air, material: air}, {name: air, material: air}]
+  time: {end: 0.01}
+  initial:
+    state: {p: 1.0e5, T: 300, velocity: [0.0], alpha: [0.5, 0.5]}
+)");
+  EXPECT_NE(twice.find("fluid.phases.1.name: expected a name that differs from the first phase's, got 'air' twice"),
+            std::string::npos)
+      << twice;
+}
+
+// Boundary values are checked at load, naming the key, the value and the range (they used to pass and fail later as a
+// numerical failure, exit 3): pressures in (0, 1e13] Pa (a stiffened gas at p = -1 Pa included, though p + pinf > 0),
+// densities in (0, 1e5] kg/m^3, temperatures in (0, 1e9] K and the density they give, speeds, per-phase values.
+// Initial states get the same magnitudes (a pressure may be negative there, with p + pinf > 0).
+TEST(SceneValidation, BoundaryValuesAreCheckedAtLoad) {
+  const std::string inflow = replace(kGood, "  time:", R"(  boundaries:
+    x_lower: {type: inflow, state: {rho: 1.0, velocity: [1.0], p: 1.0}}
+  time:)");
+  EXPECT_EQ(error_of(inflow), "");
+  const auto boundary_error = [&](const std::string& state) {
+    return error_of(replace(inflow, "state: {rho: 1.0, velocity: [1.0], p: 1.0}", "state: " + state));
+  };
+  struct Case {
+    std::string state, expected;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"{rho: 1.0, velocity: [1.0], p: 1.0e300}",
+            "<scene>:6: fluid.boundaries.x_lower.state.p: expected a boundary pressure in (0, 1e13] Pa, got '1.0e300'"},
+           {"{rho: 1.0, velocity: [1.0], p: -1.0e300}",
+            "fluid.boundaries.x_lower.state.p: expected a boundary pressure in (0, 1e13] Pa, got '-1.0e300'"},
+           {"{rho: 1.0, velocity: [1.0], p: 0}",
+            "fluid.boundaries.x_lower.state.p: expected a boundary pressure in (0, 1e13] Pa, got '0'"},
+           {"{rho: 0, velocity: [1.0], p: 1.0}",
+            "fluid.boundaries.x_lower.state.rho: expected a density in (0, 1e5] kg/m^3, got '0'"},
+           {"{rho: 1.0e300, velocity: [1.0], p: 1.0}",
+            "fluid.boundaries.x_lower.state.rho: expected a density in (0, 1e5] kg/m^3, got '1.0e300'"},
+           {"{T: -3, velocity: [1.0], p: 1.0}",
+            "fluid.boundaries.x_lower.state.T: expected a temperature in (0, 1e9] K, got '-3'"},
+           {"{T: 1.0e300, velocity: [1.0], p: 1.0}",
+            "fluid.boundaries.x_lower.state.T: expected a temperature in (0, 1e9] K, got '1.0e300'"},
+           {"{T: 1.0e-30, velocity: [1.0], p: 1.0}",
+            "fluid.boundaries.x_lower.state.T: expected a temperature that gives phase 'gas' a density in (0, 1e5] "
+            "kg/m^3, but T = 1e-30 K at p = 1 Pa"},
+           {"{rho: 1.0, velocity: [.inf], p: 1.0}", "fluid.boundaries.x_lower.state.velocity"},
+           {"{rho: 1.0, velocity: [1.0e6], p: 1.0}",
+            "fluid.boundaries.x_lower.state.velocity: expected entries that are speeds of at most 1e5 m/s"},
+           {"{rho: 1.0, velocity: [1.0], p: .nan}", "fluid.boundaries.x_lower.state.p"}}) {
+    const std::string e = boundary_error(c.state);
+    EXPECT_NE(e.find(c.expected), std::string::npos) << c.state << ": " << e;
+  }
+  // water in tension: admissible (p + pinf > 0), but not as a boundary's reservoir; in the initial state it is
+  const std::string water = replace(
+      replace(replace(inflow, "{name: gas, eos: {type: ideal_gas, gamma: 1.4}}", "{name: water, material: water}"),
+              "state: {rho: 1.0, velocity: [0.0], p: 1.0}", "state: {rho: 1000.0, velocity: [0.0], p: -1.0}"),
+      "state: {rho: 1.0, velocity: [1.0], p: 1.0}", "state: {rho: 1000.0, velocity: [1.0], p: -1.0}");
+  const std::string tension = error_of(water);
+  EXPECT_NE(tension.find("fluid.boundaries.x_lower.state.p: expected a boundary pressure in (0, 1e13] Pa, got '-1.0'"),
+            std::string::npos)
+      << tension;
+  EXPECT_EQ(error_of(replace(water, "velocity: [1.0], p: -1.0", "velocity: [1.0], p: 1.0e5")), "");
+  // two phases: a per-phase value
+  const std::string two = R"(fluid:
+  mesh: {cells: [20], lower: [0.0], upper: [1.0]}
+  phases: [{name: air, material: air}, {name: water, eos: {type: stiffened_gas, gamma: 4.4, pinf: 6.0e8, cv: 4186}}]
+  time: {end: 0.01}
+  boundaries:
+    x_lower: {type: inflow, state: {p: 1.0e5, rho: 1.2, velocity: [0.0], alpha: [0.5, 0.5], phases: [{}, {p: -5}]}}
+  initial:
+    state: {p: 1.0e5, rho: 1.2, velocity: [0.0], alpha: [0.5, 0.5], phases: [{}, {rho: 1000}]}
+)";
+  const std::string per_phase = error_of(two);
+  EXPECT_NE(per_phase.find("<scene>:6: fluid.boundaries.x_lower.state.phases.1.p: expected a boundary pressure in "
+                           "(0, 1e13] Pa, got '-5'"),
+            std::string::npos)
+      << per_phase;
+  EXPECT_EQ(error_of(replace(two, "{p: -5}", "{p: 5}")), "");
+  // initial states: the same magnitudes
+  const std::string huge = error_of(replace(kGood, "p: 1.0}", "p: 1.0e300}"));
+  EXPECT_NE(huge.find("fluid.initial.state.p: expected a pressure of at most 1e13 Pa in magnitude, got '1.0e300'"),
+            std::string::npos)
+      << huge;
+}
+
+// The solver refuses such a scene with exit code 2 and writes nothing.
+TEST(FluidSolverExecutable, RegionCoveringNoCellAndAbsurdBoundaryExitTwo) {
+  const auto out = cosim::test::scratch_path("bad_region_out");
+  std::string err;
+  const std::string region = std::string(kGood) +
+                             "    regions:\n      - box: {lower: [2.0], upper: [3.0]}\n"
+                             "        state: {rho: 0.125, velocity: [0.0], p: 0.1}\n";
+  EXPECT_EQ(run_solver(region, out, err), 2) << err;
+  EXPECT_NE(err.find("scene.yaml:9: fluid.initial.regions.0.box: expected a region that contains the centre of at "
+                     "least one cell"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+  const std::string boundary = replace(kGood, "  time:", R"(  boundaries:
+    x_lower: {type: inflow, state: {rho: 1.0, velocity: [1.0], p: -1.0e300}}
+  time:)");
+  EXPECT_EQ(run_solver(boundary, out, err), 2) << err;
+  EXPECT_NE(err.find("fluid.boundaries.x_lower.state.p: expected a boundary pressure in (0, 1e13] Pa"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+  std::filesystem::remove_all(out);
+}
+
 }  // namespace
 }  // namespace cosim::fluid::test
