@@ -1,6 +1,7 @@
 // The time loop both standalone solvers share: CFL steps up to each output time (the last step
 // of an interval is split so no step is tiny), a snapshot at each output time, a progress line,
-// and the mapping of failures to exit codes (3 numerical, 4 I/O or other, 130 interrupted).
+// and the mapping of failures to exit codes (common/app/errors.h: 2 bad input, 3 numerical, 4 I/O, 1 any other
+// failure, 130 interrupted).
 #pragma once
 
 #include <fmt/format.h>
@@ -12,15 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/app/errors.h"
 #include "common/util/progress.h"
 
 namespace cosim::app {
-
-// Base of the solvers' "the state cannot be kept admissible" errors (exit code 3).
-class NumericalError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // SIGINT/SIGTERM set a flag that drive() checks between steps.
 void install_interrupt_handlers();
@@ -68,7 +64,7 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot, AfterSte
   long steps_last = sim.steps();
   double floor = -1;
   try {
-    if (!o.resumed) snapshot();
+    if (!o.resumed) as_io("writing a snapshot", snapshot);
     for (std::size_t i = o.outputs_done; i < o.output_times.size(); ++i) {
       const double t_out = o.output_times[i];
       while (sim.time() < t_out * (1.0 - 1e-14) && sim.steps() < o.max_steps) {
@@ -101,22 +97,21 @@ DriveResult drive(Sim& sim, const DriveOptions& o, Snapshot&& snapshot, AfterSte
         progress.update(sim.steps(), sim.time(), o.t_end,
                         fmt::format("dt={:.3g}  {:.3g} {}", dt, rate * 1e-6, o.rate_unit));
       }
-      snapshot();
+      as_io("writing a snapshot", snapshot);
       if (sim.steps() >= o.max_steps) {
         spdlog::warn("stopped at max_steps = {} (t = {:.6g})", o.max_steps, sim.time());
         break;
       }
     }
-  } catch (const NumericalError& e) {
-    r = {"failed", e.what(), 3, 0};
-    spdlog::error("{}", e.what());
-  } catch (const std::runtime_error& e) {
-    if (interrupted()) {
-      r = {"interrupted", "", 130, 0};
+  } catch (const std::exception& e) {
+    // A failure of none of the types of errors.h is not hidden as one of them: exit code 1, said so.
+    const int code = exit_code_of(e);
+    if (code == kExitUnforeseen && interrupted()) {
+      r = {"interrupted", "", kExitInterrupted, 0};
       spdlog::warn("interrupted at t = {:.6g}; the last complete snapshot is kept", sim.time());
     } else {
-      r = {"failed", e.what(), 4, 0};
-      spdlog::error("{}", e.what());
+      r = {"failed", code == kExitUnforeseen ? fmt::format("unforeseen failure: {}", e.what()) : e.what(), code, 0};
+      spdlog::error("{}", r.error);
     }
   }
   progress.finish();

@@ -2,8 +2,9 @@
 // directives (docs/protocol.md, "Writing a solver client"). The solver supplies the cycle (its part of
 // paper section 8 for one DtDecision) and the snapshot writer; this maps every failure to an exit code
 // and tells the coupler why when the fault is ours:
-//   0 completed (the coupler's Stop), 3 numerical failure of this solver, 4 I/O or other failure,
-//   5 coupling failure (peer lost, refused, protocol error, malformed data), 130 interrupted.
+//   0 completed (the coupler's Stop), 2 bad input, 3 numerical failure of this solver, 4 I/O,
+//   5 coupling failure (peer lost, refused, protocol error, malformed data), 1 any other (unforeseen) failure,
+//   130 interrupted (common/app/errors.h).
 #pragma once
 
 #include <fmt/format.h>
@@ -120,12 +121,12 @@ SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycl
     fail(app::interrupted() ? 130 : 5, app::interrupted() ? "interrupted" : "failed", e.what(), false);
   } catch (const std::invalid_argument& e) {  // malformed data from the coupler
     fail(5, "failed", e.what(), true);
-  } catch (const app::NumericalError& e) { fail(3, "failed", e.what(), true); } catch (const std::exception& e) {
-    if (app::interrupted()) {
-      fail(130, "interrupted", "interrupted", true);
-    } else {
-      fail(4, "failed", e.what(), true);
-    }
+  } catch (const std::exception& e) {
+    // The typed failures of common/app/errors.h keep their code; any other is 1 (unforeseen), not hidden as I/O.
+    const int code = app::exit_code_of(e);
+    if (code != app::kExitUnforeseen) fail(code, "failed", e.what(), true);
+    else if (app::interrupted()) fail(130, "interrupted", "interrupted", true);
+    else fail(code, "failed", fmt::format("unforeseen failure: {}", e.what()), true);
   }
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   client.close();

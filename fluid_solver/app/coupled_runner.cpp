@@ -92,10 +92,26 @@ int run_fluid_coupled(const RunOptions& opt) {
     solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
+  // The solid's faces of this cycle as the embedded boundary: a surface its deformation made invalid (not closed,
+  // a degenerate face) is a numerical failure of the coupled run (exit 3); malformed data stays a coupling one.
+  const auto embedded_boundary = [&](const coupling::Faces& faces, const coupling::Directive& d) {
+    try {
+      return boundary->receive_faces(faces, d.dt);
+    } catch (const std::invalid_argument&) { throw; } catch (const coupling::CouplingError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw app::NumericalError(
+          fmt::format("cycle {}: the solid's surface cannot bound the fluid: {}", d.cycle, e.what()));
+    }
+  };
   const auto cycle = [&](const coupling::Directive& d) {
     const coupling::Faces faces = client->receive_faces();
-    if (first) coupled::check_structure_inside_domain(scene, faces);
-    client->send_samples(boundary->receive_faces(faces, d.dt));
+    if (first) {
+      try {
+        coupled::check_structure_inside_domain(scene, faces);
+      } catch (const std::invalid_argument& e) { throw app::InputError(e.what()); }
+    }
+    client->send_samples(embedded_boundary(faces, d));
     const double stable_now = pipelined ? solver_work([&] { return sim->stable_dt(); }) : 0.0;
     if (pipelined) client->propose_dt(stable_now);
     boundary->apply_states(client->receive_states());
@@ -110,13 +126,16 @@ int run_fluid_coupled(const RunOptions& opt) {
     });
     if (!pipelined) client->propose_dt(next);
   };
-  const auto output = [&](const coupling::Directive&) { write_snapshot(series, *sim, boundary->segments_csv()); };
+  const auto output = [&](const coupling::Directive&) {
+    app::as_io("writing a snapshot", [&] { write_snapshot(series, *sim, boundary->segments_csv()); });
+  };
   const auto checkpoint = [&](const coupling::Directive& d) {
     FluidRunState st{d.cycle,
                      d.time,
                      rec.start_totals,
                      {{"flow_solver_seconds", solver_seconds}, {"max_step_over_stable", max_step_over_stable}}};
-    return write_fluid_part(d.directory, *sim, series, st, boundary.get());
+    return app::as_io("writing the checkpoint part",
+                      [&] { return write_fluid_part(d.directory, *sim, series, st, boundary.get()); });
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);
   rec.status = res.status;

@@ -12,6 +12,7 @@
 #include <cstdlib>
 
 #include "common/app/plan_facts.h"
+#include "common/app/scene_kind.h"
 #include "common/app/version.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
@@ -96,6 +97,14 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 constexpr double kCheckSetUpLimit = 1024.0 * 1024.0 * 1024.0;
 
 int run_fluid(const RunOptions& opt) {
+  if (!opt.coupled()) {  // a scene with coupling: and no solid: is not run as a fluid-only one
+    try {
+      app::refuse_coupling_without_solid(config::load_file(opt.scene_file, opt.overrides));
+    } catch (const config::ConfigError& e) {
+      spdlog::error("{}", e.what());
+      return 2;
+    }
+  }
   if (opt.check) {  // the scene as a run reads it (its memory need included), nothing written
     const auto s = app::load_scene<FluidScene>(opt, load_fluid_scene);
     if (!s) return 2;
@@ -185,14 +194,17 @@ int run_fluid(const RunOptions& opt) {
     if (!opt.checkpoints.empty()) checkpoint::clear(opt.checkpoints);  // an earlier run's sets
   }
   // fluid.checkpoint: a set of one part (fluid.h5), complete with its manifest.
-  const auto after_step = [&](double t_prev) {
-    if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
+  const auto write_checkpoint = [&] {
     const std::filesystem::path dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
     nlohmann::json m = checkpoint::scene_record(opt.scene_file, opt.overrides);
     m["parts"] = {
         write_fluid_part(dir, *sim, series, {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()})};
     checkpoint::write_manifest(dir, sim->steps(), sim->time(), m);
     checkpoint::prune(opt.checkpoints, scene.checkpoint.keep);
+  };
+  const auto after_step = [&](double t_prev) {
+    if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
+    app::as_io("writing a checkpoint", [&] { write_checkpoint(); });
   };
   const app::DriveResult res = app::drive(
       *sim, drive_opt, [&] { write_snapshot(series, *sim); }, after_step);

@@ -115,17 +115,21 @@ int run_solid_coupled(const RunOptions& opt) {
       throw std::invalid_argument(
           fmt::format("InterfaceStates.face_pressure: {} values for {} faces", st.face_pressure.size(), st.count));
     apply_states(st);
-    if (scene.history_every > 0 && ++cycles % scene.history_every == 0) history->record(*sim);
+    if (scene.history_every > 0 && ++cycles % scene.history_every == 0)
+      app::as_io("the block history", [&] { history->record(*sim); });
   };
   const auto output = [&](const coupling::Directive&) {
-    if (scene.write_snapshots) write_snapshot(series, *sim);
-    history->record(*sim);
+    app::as_io("writing a snapshot", [&] {
+      if (scene.write_snapshots) write_snapshot(series, *sim);
+      history->record(*sim);
+    });
   };
   const auto checkpoint = [&](const coupling::Directive& d) {
     SolidRunState st{
         d.cycle, d.time,         rec.start,
         last,    apply_velocity, {{"cycles", cycles}, {"solver_seconds", solver_seconds}, {"solid_steps", substeps}}};
-    return write_solid_part(d.directory, *sim, series, *history, st);
+    return app::as_io("writing the checkpoint part",
+                      [&] { return write_solid_part(d.directory, *sim, series, *history, st); });
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);
   rec.status = res.status;

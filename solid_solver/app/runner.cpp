@@ -149,7 +149,7 @@ int run_solid(const RunOptions& opt) {
     long steps() const { return sim.steps(); }
     void advance(double dt) {
       sim.advance(dt);
-      if (every > 0 && sim.steps() % every == 0) history.record(sim);
+      if (every > 0 && sim.steps() % every == 0) app::as_io("the block history", [&] { history.record(sim); });
     }
   } stepped{*sim, history, scene.history_every};
   app::DriveOptions drive_opt{scene.output_times,
