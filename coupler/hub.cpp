@@ -55,6 +55,7 @@ void Hub::reply_error(const std::string& id, const std::string& reason) {
 
 void Hub::fail_peer(Role r, const std::string& what) {
   const std::string msg = fmt::format("{} {}", peer(r).describe(r), what);
+  blame(r);
   reply_error(peer(r).id, msg);
   throw ProtocolError(msg);
 }
@@ -146,7 +147,11 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
       // A Hello without this run's token is a stranger's (the launcher gives the run's own solvers the token):
       // refused and logged, the run goes on. One of the run's own solvers refused (its version, its scene) ends
       // the start-up, and any Hello once the run is going is refused.
-      if (own) throw coupling::Refused(msg);
+      if (own) {
+        const auto role = e->hello().role();
+        if (role == pb::ROLE_FLUID || role == pb::ROLE_SOLID) blame(coupling::from_pb(role));
+        throw coupling::Refused(msg);
+      }
       if (log_stranger) spdlog::warn("{}; the run goes on", msg);
       return false;
     }
@@ -161,8 +166,10 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     beats_->admit(coupling::from_pb(e->hello().role()));
     p.hello = *e;
     p.welcome = w;
-    if (!sock_.send({id, coupling::encode(w)}, 500))
+    if (!sock_.send({id, coupling::encode(w)}, 500)) {
+      blame(coupling::from_pb(e->hello().role()));
       throw PeerLost(p.describe(coupling::from_pb(e->hello().role())) + " vanished during the handshake");
+    }
     spdlog::info("{} connected", p.describe(coupling::from_pb(e->hello().role())));
     return false;
   }
@@ -174,6 +181,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     fail_peer(known, fmt::format("sent {} with protocol version {}, expected {}", coupling::body_name(*e),
                                  h.protocol_version(), coupling::kProtocolVersion));
   if (h.token() != opt_.token) fail_peer(known, fmt::format("sent {} with a wrong run token", coupling::body_name(*e)));
+  if (e->has_error() || e->has_stop()) blame(known);
   if (e->has_error()) throw PeerLost(fmt::format("{} reported an error: {}", p.describe(known), e->error().reason()));
   if (e->has_stop()) throw PeerLost(fmt::format("{} stopped: {}", p.describe(known), e->stop().reason()));
   std::string problem = coupling::validate(*e);
@@ -192,12 +200,16 @@ void Hub::beat_and_check() {
   for (Role r : kRoles) {
     const Peer& p = peer(r);
     if (!p.connected) continue;
-    if (const std::string why = beats_->lost(r); !why.empty())
+    if (const std::string why = beats_->lost(r); !why.empty()) {
+      blame(r);
       throw PeerLost(fmt::format("{} declared dead: {}", p.describe(r), why));
+    }
     const double heard = std::max(p.last_seen, beats_->last_heard(r));
-    if (t - heard > opt_.timeout)
+    if (t - heard > opt_.timeout) {
+      blame(r);
       throw PeerLost(fmt::format("{} declared dead: no message or heartbeat for {:.1f} s (timeout {:g} s)",
                                  p.describe(r), t - heard, opt_.timeout));
+    }
   }
 }
 
@@ -213,11 +225,13 @@ Hub::Incoming Hub::next_data(const std::string& waiting_for, Role from, double s
     beat_and_check();
     // A peer that heartbeats but does not answer (a hung solver loop) is stopped too, naming what it owes.
     const double waited = now_s() - since, limit = step_limit(from);
-    if (waited > limit)
+    if (waited > limit) {
+      blame(from);
       throw PeerLost(fmt::format(
           "{} sends heartbeats but has not sent {} for {:.1f} s (coupling.step_timeout {})", peer(from).describe(from),
           waiting_for, waited,
           opt_.step_timeout > 0 ? fmt::format("{:g} s", opt_.step_timeout) : fmt::format("automatic: {:g} s", limit)));
+    }
     if (poll_once(50, in)) return in;
   }
 }
@@ -231,6 +245,7 @@ void Hub::handshake() {
       std::vector<std::string> missing;
       for (Role r : kRoles)
         if (!peer(r).connected) missing.push_back(coupling::role_name(r));
+      if (missing.size() == 1) blamed_ = missing[0];
       throw PeerLost(fmt::format("no Hello from the {} within {:g} s on {}", fmt::join(missing, " and "),
                                  opt_.connect_timeout, bound_));
     }
@@ -250,9 +265,11 @@ void Hub::send(Role to, pb::Envelope& e) {
   time_ = e.header().time();
   beats_->set_clock(cycle_, time_);
   const Peer& p = peer(to);
-  if (!sock_.send({p.id, coupling::encode(e)}, 2000))
+  if (!sock_.send({p.id, coupling::encode(e)}, 2000)) {
+    blame(to);
     throw PeerLost(
         fmt::format("{} cannot be reached (connection closed) for {}", p.describe(to), coupling::body_name(e)));
+  }
   if (transcript_) transcript_->record("->", to, e);
 }
 

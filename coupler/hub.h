@@ -76,6 +76,9 @@ class Hub {
   double wait_seconds() const { return wait_; }  // time spent blocked in receives [s]
   // Replies Error to the peer and throws ProtocolError naming it.
   [[noreturn]] void reject(coupling::Role r, const std::string& what) { fail_peer(r, what); }
+  // The role ("fluid", "solid") of the peer the last failure thrown here names (dead, refused, reported an error,
+  // sent something wrong), "" when none: the launcher's cause of a failed run (coupler_summary.json "peer").
+  const std::string& blamed() const { return blamed_; }
 
  private:
   static int index(coupling::Role r) { return r == coupling::Role::Fluid ? 0 : 1; }
@@ -94,6 +97,7 @@ class Hub {
   void reply_error(const std::string& id, const std::string& reason);
   std::string check_hello(const coupling::pb::Envelope& e) const;
   [[noreturn]] void fail_peer(coupling::Role r, const std::string& what);
+  void blame(coupling::Role r) { blamed_ = coupling::role_name(r); }
 
   HubOptions opt_;
   Transcript* transcript_;
@@ -108,6 +112,7 @@ class Hub {
   StrangerLimit strangers_;
   long cycle_ = 0;
   double time_ = 0;
+  std::string blamed_;
 };
 
 }  // namespace cosim::coupler

@@ -2,7 +2,8 @@
 //         [--checkpoints ROOT] [--restart SET]
 // Reads the scene's `coupling:` section, binds EP, handshakes the fluid and solid solvers and runs the coupled
 // cycle (coupler/cycle.h). Exit codes: 0 completed, 2 bad input, 4 I/O, 5 peer or protocol failure,
-// 130 interrupted.
+// 130 interrupted. A failure caused by a peer names it in coupler_summary.json ("peer": fluid or solid): the
+// launcher blames that process, not the coupler that stopped the run.
 #include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -33,7 +34,8 @@
 using namespace cosim;
 
 namespace {
-void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& s, coupling::Scheme scheme) {
+void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& s, coupling::Scheme scheme,
+                   const std::string& peer) {
   const double n = std::max<long>(s.cycles, 1);
   nlohmann::json j;
   j["status"] = s.status;
@@ -41,6 +43,8 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
   j["git_commit"] = cosim::app::git_commit();
   j["scheme"] = coupling::scheme_name(scheme);  // pipelined: solid and fluid work overlap (CycleTiming::comm)
   j["message"] = s.message;
+  j["exit_code"] = s.code;
+  if (s.code != 0 && !peer.empty()) j["peer"] = peer;  // the solver whose failure stopped the run
   j["cycles"] = s.cycles;
   j["time"] = s.time;
   j["per_cycle_seconds"] = {{"wall", s.total.wall / n},     {"solid", s.total.solid / n},
@@ -151,7 +155,7 @@ int main(int argc, char** argv) {
     spdlog::info("listening on {} ({} coupling, {} cycle, timeout {:g} s)", hub.bound_endpoint(),
                  coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.timeout);
     const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out, ck);
-    write_summary(out, s, cfg.scheme);
+    write_summary(out, s, cfg.scheme, hub.blamed());
     if (s.code == 0) {
       const double n = std::max<long>(s.cycles, 1);
       spdlog::info(
