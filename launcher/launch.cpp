@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
@@ -22,6 +23,8 @@
 #include <sstream>
 #include <thread>
 
+#include "common/app/errors.h"
+#include "common/app/scene_kind.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "common/coupling/endpoints.h"
@@ -138,17 +141,113 @@ std::vector<std::string> split_command(const std::string& cmd) {
 }
 
 namespace {
-// The process whose failure ended the run, given the first that exited with an error: a solver that ends because
-// the coupler stopped the run (its log says so: a peer declared dead, a refused message) exits moments before the
-// coupler that stopped it, which is then the cause; it gets up to a second to exit.
-Child& failure_cause(std::vector<Child>& children, Child& first) {
-  if (first.name == "coupler" || tail(first.log, 5).find("coupler stopped the run") == std::string::npos) return first;
-  for (auto& c : children)
-    if (c.name == "coupler") {
-      for (int i = 0; i < 50 && c.running && !poll(c); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      return !c.running && c.exit_code != 0 ? c : first;
+// The process whose failure started the chain, once `first` has failed. Every process gets up to a second to end
+// by itself (a solver's failure reaches the coupler at once, which stops the other solver; the coupler's death
+// reaches both solvers at once), whatever the order in which they are reaped; then the cause is, in this order:
+//  1. the solver the coupler names as the cause in coupler_summary.json ("peer": dead, refused, reported an
+//     error), when it ended by itself with an error;
+//  2. a process killed by a signal (kill -9, a crash): nothing of this run has signalled its processes yet;
+//  3. a solver failing with its own code (a solver's 5 is the coupler stopping it or vanishing: a consequence);
+//  4. the coupler, when it failed;
+//  5. the first that failed.
+Child failure_cause(std::vector<Child>& children, const Child& first, const fs::path& out) {
+  const auto own_failure = [](const Child& c) {
+    return !c.running && c.exit_code != 0 && (c.signal > 0 || (c.name != "coupler" && c.exit_code != 5));
+  };
+  const double until = now_s() + 1.0;
+  for (;;) {
+    bool all_ended = true, decided = false;
+    for (auto& c : children) {
+      poll(c);
+      all_ended = all_ended && !c.running;
+      decided = decided || own_failure(c);
     }
+    if (all_ended || decided || now_s() > until) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  std::string peer;
+  try {
+    std::ifstream in(out / "coupler" / "coupler_summary.json");
+    if (in) peer = nlohmann::json::parse(in).value("peer", "");
+  } catch (const std::exception&) {}
+  for (const auto& c : children)
+    if (!peer.empty() && c.name == peer && !c.running && c.exit_code != 0) return c;
+  for (const auto& c : children)
+    if (!c.running && c.signal > 0) return c;
+  for (const auto& c : children)
+    if (own_failure(c)) return c;
+  for (const auto& c : children)
+    if (c.name == "coupler" && !c.running && c.exit_code != 0) return c;
   return first;
+}
+
+// A process beside the launcher that outlives it. When the launcher dies without ending the run (kill -9, a
+// crash), the pipe from it closes: the watcher kills the process groups of the run's processes (they die of their
+// parent-death signal; what they started dies this way), marks run_summary.json failed naming the launcher, and
+// exits, holding the run directory's lock until then. At a normal end the launcher says so and reaps it.
+struct Watcher {
+  pid_t pid = -1;
+  int fd = -1;  // the launcher's end of the pipe
+  void tell(const std::string& line) const {
+    if (fd >= 0) [[maybe_unused]]
+      auto w = ::write(fd, line.data(), line.size());
+  }
+  void started(pid_t group) const { tell(fmt::format("P{}\n", group)); }
+  Watcher() = default;
+  Watcher(const Watcher&) = delete;
+  Watcher& operator=(const Watcher&) = delete;
+  ~Watcher() {
+    if (pid <= 0) return;
+    tell("D\n");
+    ::close(fd);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+  }
+};
+
+void start_watcher(Watcher& w, const fs::path& out, const std::vector<fs::path>& leftovers) {
+  int p[2];
+  if (::pipe2(p, O_CLOEXEC) != 0) return;
+  const pid_t launcher = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(p[0]);
+    ::close(p[1]);
+    return;
+  }
+  if (pid == 0) {
+    ::close(p[1]);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) ::signal(sig, SIG_IGN);
+    std::string text;
+    char chunk[256];
+    for (;;) {
+      const ssize_t n = ::read(p[0], chunk, sizeof chunk);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      text.append(chunk, static_cast<std::size_t>(n));
+    }
+    std::istringstream lines(text);
+    std::vector<pid_t> groups;
+    bool done = false;
+    for (std::string l; std::getline(lines, l);) {
+      if (l == "D") done = true;
+      else if (l.size() > 1 && l[0] == 'P') groups.push_back(static_cast<pid_t>(std::atol(l.c_str() + 1)));
+    }
+    if (!done) {
+      for (pid_t g : groups) ::kill(-g, SIGKILL);
+      mark_launcher_died(out, launcher,
+                         fmt::format("the launcher (cosim, pid {}) died (killed by a signal or crashed) at {}; its "
+                                     "processes were killed with it",
+                                     launcher, utc_now()));
+      std::error_code ignored;
+      for (const fs::path& f : leftovers)
+        if (!f.empty()) fs::remove(f, ignored);
+    }
+    ::_exit(0);
+  }
+  ::close(p[0]);
+  w.pid = pid;
+  w.fd = p[1];
 }
 
 // What the scene says about its run: coupled or fluid-only, its name, and the programs (the scene's launcher:
@@ -169,6 +268,7 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
   try {
     config::Node root = config::load_file(opt.scene, opt.overrides);
     coupled = root.has("solid");
+    app::refuse_coupling_without_solid(root);
     name = root.get<std::string>("name", fs::path(opt.scene).stem().string());
     // launcher: {fluid: CMD, solid: CMD, coupler: CMD}: the programs of this scene (e.g. a solid written in
     // Python); {bin} is the directory of cosim, {python} the build's python directory, {scene_dir} the directory
@@ -323,9 +423,9 @@ int run(const LaunchOptions& opt) {
   std::error_code ec;
   const bool fresh = !fs::exists(out, ec);
   fs::create_directories(out, ec);
-  if (ec) {
+  if (ec) {  // an output that cannot be created is an I/O failure, as in the solvers
     std::cerr << fmt::format("cosim: {}: cannot create the run directory: {}\n", out.string(), ec.message());
-    return 2;
+    return app::kExitIo;
   }
   // One run per directory: a lock held for the whole run (released by the kernel when cosim ends, however).
   const fs::path lock_path = out / ".cosim.lock";
@@ -348,8 +448,18 @@ int run(const LaunchOptions& opt) {
     std::cerr << fmt::format("cosim: cannot copy {} to {}: {}\n", opt.scene, scene.string(), ec.message());
     std::error_code ignored;
     if (fresh) fs::remove_all(out, ignored);  // this run made it (and holds its lock): nothing of it is kept
-    return 2;
+    return app::kExitIo;
   }
+  // A summary still "running" is a launcher's that died without a watcher to say so (the machine stopped): this
+  // run holds the lock, so none runs there now. Said so before anything else is written.
+  if (const long dead = running_launcher(out); dead != 0)
+    mark_launcher_died(out, 0,
+                       fmt::format("the launcher (cosim, pid {}) ended without writing its summary (killed, or the "
+                                   "machine stopped); found by cosim pid {} at {}",
+                                   dead, ::getpid(), utc_now()));
+  const Attempt attempt = next_attempt(out, !opt.restart.empty(), restart_set.string());
+  // The coupler's summary of an earlier run would name a cause of that run.
+  fs::remove(out / "coupler" / "coupler_summary.json", ec);
 
   const auto command = [&](const std::string& given, const char* exe) {
     std::vector<std::string> argv = split_command(given);
@@ -376,6 +486,13 @@ int run(const LaunchOptions& opt) {
   if (coupled)
     children.push_back(
         {"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
+  // A restart adds to the logs of the earlier attempts, after a line that marks where it begins.
+  if (attempt.restart)
+    for (auto& c : children) {
+      c.append_log = true;
+      c.log_header = fmt::format("===== cosim restart at {} from checkpoint set {} (attempt {}) =====", attempt.started,
+                                 attempt.restart_set, attempt.number);
+    }
 
   nlohmann::json launch;
   launch["endpoint"] = coupled ? endpoint : "";
@@ -410,17 +527,23 @@ int run(const LaunchOptions& opt) {
   const auto stop_children = [&] { stop_all(children, 3.0); };
   const double launch_time = now_s();
   const auto summarise = [&](const std::string& status, const std::string& reason, const Child* failed) {
-    if (status != "completed") remove_empty_outputs(out, children);
-    write_run_summary(out, {status, reason, failed, now_s() - launch_time}, children, coupled);
+    if (status != "completed" && status != "running") remove_empty_outputs(out, children);
+    write_run_summary(out, {status, reason, failed, now_s() - launch_time}, children, coupled, attempt);
   };
+  Watcher watcher;  // says so in run_summary.json if this launcher dies
+  start_watcher(watcher, out, {socket_cleanup.file, socket_cleanup.heartbeat_file});
   try {
-    for (auto& c : children) start(c);
+    for (auto& c : children) {
+      start(c);
+      watcher.started(c.pid);
+    }
   } catch (const std::exception& e) {
     stop_children();
     std::cerr << "cosim: " << e.what() << "\n";
     summarise("failed", e.what(), nullptr);
-    return 2;
+    return app::kExitIo;  // a log that cannot be written, a fork that fails
   }
+  summarise("running", fmt::format("cosim (pid {}) is running it", ::getpid()), nullptr);
   if (!opt.quiet)
     std::cerr << fmt::format("cosim: {} run {} in {} ({})\n", coupled ? "coupled" : "fluid-only", name, out.string(),
                              coupled ? endpoint : "no coupler");
@@ -444,7 +567,7 @@ int run(const LaunchOptions& opt) {
       if (first_exit == 0) first_exit = now_s();
       if (c.exit_code != 0) {
         if (tty && !opt.quiet) std::cerr << "\n";
-        const Child failed = failure_cause(children, c);  // as it ended, before the others are stopped
+        const Child failed = failure_cause(children, c, out);  // as it ended, before the others are stopped
         stop_children();
         std::cerr << fmt::format("cosim: {} failed with exit code {}; last lines of {}:\n{}", failed.describe(),
                                  failed.exit_code, failed.log.string(), tail(failed.log, 15));

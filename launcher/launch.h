@@ -24,8 +24,9 @@ struct LaunchOptions {
   long restart_from = -1;         // --from N: from set N instead (-1: the newest)
 };
 
-// Runs to completion; returns 0, or the failing process's exit code (1 when that is 0), 2 for bad input,
-// 130 when interrupted. Messages go to stderr.
+// Runs to completion; returns 0, or the exit code of the process whose failure started the chain (docs/output.md,
+// "Exit codes and blame"), 2 for bad input, 4 for an output that cannot be created, 130 when interrupted.
+// Messages go to stderr.
 int run(const LaunchOptions& opt);
 // cosim check: the scene read and checked as run() does before it starts anything; 0 when valid, else 2.
 int check(const LaunchOptions& opt);

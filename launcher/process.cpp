@@ -20,9 +20,17 @@ std::string Child::describe() const { return fmt::format("{} ({}, pid {})", name
 
 void start(Child& c) {
   if (c.argv.empty()) throw std::runtime_error(c.name + ": no command");
-  const int fd = ::open(c.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int fd = ::open(c.log.c_str(), O_WRONLY | O_CREAT | (c.append_log ? O_APPEND : O_TRUNC) | O_CLOEXEC, 0644);
   if (fd < 0)
     throw std::runtime_error(fmt::format("{}: cannot write the log: {}", c.log.string(), std::strerror(errno)));
+  if (!c.log_header.empty()) {
+    const std::string line = c.log_header + "\n";
+    if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size())) {
+      const std::string err = std::strerror(errno);
+      ::close(fd);
+      throw std::runtime_error(fmt::format("{}: cannot write the log: {}", c.log.string(), err));
+    }
+  }
   std::vector<char*> args;
   for (auto& a : c.argv) args.push_back(a.data());
   args.push_back(nullptr);

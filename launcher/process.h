@@ -15,6 +15,8 @@ struct Child {
   std::string name;               // "fluid", "solid", "coupler"
   std::vector<std::string> argv;  // argv[0]: the executable (searched in PATH when it has no '/')
   std::filesystem::path log;
+  bool append_log = false;   // a restart adds to the log of the earlier attempts (else it starts empty)
+  std::string log_header{};  // a line written to the log before the process starts ("" none)
   pid_t pid = -1;
   bool running = false;
   int exit_code = 0;             // 128 + signal when killed by a signal

@@ -1,9 +1,11 @@
 #include "launcher/run_summary.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -13,6 +15,99 @@
 #include "common/io/atomic_file.h"
 
 namespace cosim::launcher {
+
+namespace {
+nlohmann::json read_json(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  if (!in) return nullptr;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const std::exception&) { return nullptr; }
+}
+
+// The attempts of run_history.json; a run directory written before it existed: its run_summary.json as attempt 1.
+nlohmann::json read_attempts(const std::filesystem::path& out) {
+  const nlohmann::json h = read_json(out / "run_history.json");
+  if (h.is_object() && h.contains("attempts") && h["attempts"].is_array()) return h["attempts"];
+  nlohmann::json list = nlohmann::json::array();
+  const nlohmann::json s = read_json(out / "run_summary.json");
+  if (s.is_object() && s.contains("status"))
+    list.push_back({{"attempt", 1}, {"kind", "run"}, {"status", s["status"]}, {"reason", s.value("reason", "")}});
+  return list;
+}
+
+// The attempt's entry replaced (same number) or added.
+void record_attempt(const std::filesystem::path& out, const nlohmann::json& entry, bool fresh) {
+  nlohmann::json list = fresh ? nlohmann::json::array() : read_attempts(out);
+  bool found = false;
+  for (auto& a : list)
+    if (a.value("attempt", 0) == entry["attempt"].get<int>()) {
+      a = entry;
+      found = true;
+    }
+  if (!found) list.push_back(entry);
+  io::write_file_atomically(out / "run_history.json", nlohmann::json{{"attempts", list}}.dump(2) + "\n");
+}
+
+nlohmann::json attempt_entry(const nlohmann::json& summary) {
+  nlohmann::json e = {{"attempt", summary.value("attempt", 1)},
+                      {"kind", summary.value("kind", "run")},
+                      {"status", summary.value("status", "")},
+                      {"reason", summary.value("reason", "")},
+                      {"started", summary.value("started", "")},
+                      {"ended", summary.value("ended", "")},
+                      {"launcher_pid", summary.value("launcher_pid", 0L)}};
+  if (summary.contains("restart_set")) e["restart_set"] = summary["restart_set"];
+  if (summary.contains("failed_process")) e["failed_process"] = summary["failed_process"].value("name", "");
+  return e;
+}
+}  // namespace
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+Attempt next_attempt(const std::filesystem::path& out, bool restart, const std::string& restart_set) {
+  Attempt a;
+  a.restart = restart;
+  a.restart_set = restart_set;
+  a.started = utc_now();
+  a.launcher_pid = ::getpid();
+  if (restart) {
+    int last = 0;
+    for (const auto& e : read_attempts(out)) last = std::max(last, e.value("attempt", 0));
+    a.number = last + 1;
+  }
+  return a;
+}
+
+long running_launcher(const std::filesystem::path& out) {
+  const nlohmann::json j = read_json(out / "run_summary.json");
+  if (!j.is_object() || j.value("status", "") != "running") return 0;
+  return std::max(1L, j.value("launcher_pid", 1L));
+}
+
+bool mark_launcher_died(const std::filesystem::path& out, long launcher_pid, const std::string& why) {
+  try {
+    nlohmann::json j = read_json(out / "run_summary.json");
+    if (!j.is_object() || j.value("status", "") != "running") return false;
+    if (launcher_pid != 0 && j.value("launcher_pid", 0L) != launcher_pid) return false;
+    j["status"] = "failed";
+    j["reason"] = why;
+    j["ended"] = utc_now();
+    if (j.contains("processes"))
+      for (auto& p : j["processes"])
+        if (p.value("exit", "") == "running") p["exit"] = "killed with the launcher";
+    io::write_file_atomically(out / "run_summary.json", j.dump(2) + "\n");
+    record_attempt(out, attempt_entry(j), false);
+    return true;
+  } catch (const std::exception&) { return false; }
+}
 
 std::string exit_description(const Child& c) {
   if (c.running) return "running";
@@ -24,11 +119,17 @@ std::string exit_description(const Child& c) {
 }
 
 void write_run_summary(const std::filesystem::path& out, const RunEnd& end, const std::vector<Child>& children,
-                       bool coupled) {
+                       bool coupled, const Attempt& attempt) {
   try {
     nlohmann::json j;
     j["status"] = end.status;
     j["reason"] = end.reason;
+    j["attempt"] = attempt.number;
+    j["kind"] = attempt.restart ? "restart" : "run";
+    if (attempt.restart) j["restart_set"] = attempt.restart_set;
+    j["launcher_pid"] = attempt.launcher_pid;
+    j["started"] = attempt.started;
+    if (end.status != "running") j["ended"] = utc_now();
     j["version"] = app::version();
     j["git_commit"] = app::git_commit();
     j["wall_seconds"] = end.wall_seconds;
@@ -75,6 +176,7 @@ void write_run_summary(const std::filesystem::path& out, const RunEnd& end, cons
       j["failed_process"] = f;
     }
     io::write_file_atomically(out / "run_summary.json", j.dump(2) + "\n");
+    record_attempt(out, attempt_entry(j), !attempt.restart);
   } catch (const std::exception& e) {
     std::cerr << "cosim: cannot write " << (out / "run_summary.json").string() << ": " << e.what() << "\n";
   }
