@@ -67,10 +67,14 @@ struct Loop {
   struct Work {  // a peer's reported work at the start of the cycle, and in its checkpoint phase
     double busy = 0, output = 0;
   } start_f, start_s, ck_f, ck_s;
-  double ck_wall = 0;       // the checkpoint phase (both parts requested .. both written) less the steps within it
-  double own_output = 0;    // the coupler's interface snapshots in the open cycle [s]
-  double output_sent = -1;  // when the open cycle's first OutputRequest went out (steady clock [s]; -1: none)
-  double carry = 0;         // the cycle before, from its first OutputRequest to its end: the solvers wrote then
+  double ck_wall = 0;          // the checkpoint phase (both parts requested .. both written) less the steps within it
+  double own_output = 0;       // the coupler's interface snapshots in the open cycle [s]
+  double output_sent = -1;     // when the open cycle's first OutputRequest went out (steady clock [s]; -1: none)
+  double carry = 0;            // the cycle before, from its first OutputRequest to its end: the solvers wrote then
+  double fluid_released = -1;  // when the open cycle's states went to the fluid (steady clock [s])
+  double spill = 0;  // the cycle before, from its states to the fluid to its end: the pipelined fluid stepped then
+  bool first_row = true;
+  double handshake_done = 0, first_row_spill = 0;  // the first cycle: from the handshake to its start
 
   void close_timing() {
     if (open_cycle < 0) return;
@@ -85,6 +89,9 @@ struct Loop {
     open.solid = solid;
     open.fluid = fluid;
     open.overlapped = cfg.scheme == coupling::Scheme::Pipelined;
+    if (open.overlapped) open.fluid_spill = spill;
+    if (first_row) open.solid_spill = open.fluid_spill = first_row_spill;
+    first_row = false;
     // The solvers' snapshots, requested at the end of the cycle before, ran beside the coupler's own there (carry)
     // and at once in both solvers; the checkpoint phase is its own stretch.
     open.output =
@@ -105,12 +112,15 @@ struct Loop {
     open = {};
     open_cycle = n;
     open_start = now_s();
+    if (first_row) first_row_spill = open_start - handshake_done;
     const auto work_of = [&](Role r) { return Work{hub.peer(r).busy, hub.peer(r).output}; };
     start_f = work_of(Role::Fluid);
     start_s = work_of(Role::Solid);
     ck_f = ck_s = Work{};
     ck_wall = 0;
     carry = output_sent < 0 ? 0.0 : now_s() - output_sent;
+    spill = fluid_released < 0 ? 0.0 : now_s() - fluid_released;
+    fluid_released = -1;
     own_output = 0;
     output_sent = -1;
   }
@@ -164,6 +174,7 @@ struct Loop {
       return e;
     });
     hub.send(Role::Fluid, to_fluid);
+    fluid_released = now_s();
     pb::Envelope to_solid = work([&] {
       pb::Envelope e = envelope(hub, n, t + dt);
       coupling::to_pb(last_states, *e.mutable_states());
@@ -262,6 +273,7 @@ struct Loop {
   void run() {
     const checkpoint::PartReader* resume = ck.restart;
     hub.handshake();
+    handshake_done = now_s();
     const Start start = resume ? restore(*resume) : Start{};
     double t = start.time, dt = 0.0;
     std::size_t next_out = 0;

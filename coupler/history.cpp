@@ -71,7 +71,7 @@ void History::record(long cycle, double time, double dt, const coupling::Faces& 
 
 double output_on_path(const CycleTiming& t, double solid_out, double fluid_out) {
   const double steps = t.steps();
-  return std::max({solid_out + t.solid, fluid_out + t.fluid, steps}) - steps;
+  return std::max({solid_out + t.solid_on_path(), fluid_out + t.fluid_on_path(), steps}) - steps;
 }
 
 void History::record_timing(long cycle, const CycleTiming& t) {

@@ -28,8 +28,16 @@ struct CycleTiming {
   double wall = 0, solid = 0, fluid = 0, coupler = 0;
   double output = 0;        // snapshots and checkpoint parts on the cycle's critical path (output_on_path)
   bool overlapped = false;  // pipelined scheme: the solid's step runs during the fluid's
+  // Of each solver's work reported in this cycle, what it may have done before the cycle began: the pipelined
+  // fluid steps as soon as it has the states, while the cycle before still waits for the solid's proposal; in the
+  // first cycle, both may work from their handshake on [s].
+  double solid_spill = 0, fluid_spill = 0;
+  double solid_on_path() const { return std::max(0.0, solid - solid_spill); }
+  double fluid_on_path() const { return std::max(0.0, fluid - fluid_spill); }
   // The solvers' steps on the critical path: sequential, one after the other; pipelined, they overlap.
-  double steps() const { return overlapped ? std::max(solid, fluid) : solid + fluid; }
+  double steps() const {
+    return overlapped ? std::max(solid_on_path(), fluid_on_path()) : solid_on_path() + fluid_on_path();
+  }
   // Everything that is not solver, output or coupler work: communication and waiting.
   double comm() const { return wall - coupler - output - steps(); }
 };

@@ -257,18 +257,19 @@ def plot_blocks(history, out_dir):
 
 
 def plot_timing(cols, summary, out_dir, max_bins=600):
-    """timing.png: stacked wall time per cycle (solid, fluid, coupler, comm of coupler/timing.csv); cycles
+    """timing.png: stacked wall time per cycle (solid, fluid, coupler, output, comm of coupler/timing.csv); cycles
     averaged in bins when there are many. In the pipelined cycle (summary: coupler_summary.json) the solid works
     while the fluid does: the longer of the two is stacked, the solid drawn as a line."""
     summary = summary or {}
     overlapped = summary.get("scheme") == "pipelined"
     cycle = cols["cycle"]
     solid = cols["solid"] * 1e3
+    rest = [k for k in ("coupler", "output", "comm") if k in cols]  # output: runs written before it was a column
     if overlapped:
-        parts = ["solver (max of solid, fluid)", "coupler", "comm"]
-        values = [np.maximum(cols["solid"], cols["fluid"]) * 1e3, cols["coupler"] * 1e3, cols["comm"] * 1e3]
+        parts = ["solver (max of solid, fluid)"] + rest
+        values = [np.maximum(cols["solid"], cols["fluid"]) * 1e3] + [cols[k] * 1e3 for k in rest]
     else:
-        parts = ["solid", "fluid", "coupler", "comm"]
+        parts = ["solid", "fluid"] + rest
         values = [cols[k] * 1e3 for k in parts]
     wall = cols["wall"] * 1e3
     per_bin = max(1, int(math.ceil(len(cycle) / max_bins)))

@@ -43,7 +43,7 @@ UNITS.update({
     "force": "N",
     "centre": "m",
     # coupler/timing.csv (wall time per cycle)
-    "wall": "s", "solid": "s", "fluid": "s", "coupler": "s", "comm": "s",
+    "wall": "s", "solid": "s", "fluid": "s", "coupler": "s", "output": "s", "comm": "s",
     # solid/block_history.csv
     "mass": "kg",
     "kinetic_energy": "J",

@@ -104,7 +104,7 @@ def test_coupled_histories_and_overrides(coupled_dir):
     assert list(run.histories["interface_history"]) == [
         "cycle", "time", "dt", "force_x", "force_y", "force_z", "velocity_x", "velocity_y", "velocity_z",
         "centre_x", "centre_y", "centre_z", "pressure"]
-    assert list(run.histories["timing"]) == ["cycle", "wall", "solid", "fluid", "coupler", "comm"]
+    assert list(run.histories["timing"]) == ["cycle", "wall", "solid", "fluid", "coupler", "output", "comm"]
     blocks = run.histories["block_history"]
     assert blocks["block"].dtype.kind == "U" and set(blocks["block"]) == {"piston"}
     assert len(run.histories["timing"]["cycle"]) == len(run.histories["interface_history"]["cycle"])
