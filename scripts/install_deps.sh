@@ -7,7 +7,7 @@ RUNTIME_PACKAGES=(
   python3 python3-numpy python3-matplotlib python3-h5py python3-zmq python3-protobuf python3-yaml
 )
 PACKAGES=(
-  g++ cmake ninja-build pkg-config
+  g++ gfortran cmake ninja-build pkg-config
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libhdf5-dev libeigen3-dev nlohmann-json3-dev
   libgtest-dev libzmq3-dev libprotobuf-dev protobuf-compiler
   python3 python3-numpy python3-matplotlib python3-h5py python3-zmq python3-protobuf python3-yaml python3-pytest
