@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "common/app/errors.h"
 #include "common/app/run_driver.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/part_file.h"
@@ -213,7 +214,7 @@ struct Loop {
     sum.cycles = s.cycle - 1;
     sum.time = s.time;
     if (s.time >= cfg.t_end * (1.0 - 1e-14))
-      throw coupling::CouplingError(
+      throw app::InputError(
           fmt::format("--restart {}: the checkpoint is at t = {:.9g} s, at or after the "
                       "scene's end time coupling.time.end = {:g} s",
                       r.path().parent_path().string(), s.time, cfg.t_end));
@@ -228,7 +229,7 @@ struct Loop {
     std::filesystem::path dir;
     try {
       dir = checkpoint::prepare_set(ck.root, n);
-    } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+    } catch (const std::exception& e) { throw app::IoError(e.what()); }
     pb::Envelope req = envelope(hub, n, t);
     req.mutable_checkpoint_request()->set_directory(dir.string());
     const double phase_start = now_s();
@@ -250,22 +251,24 @@ struct Loop {
     open_timing(n + 1);
     carry = 0;  // the solvers' snapshots of cycle n were reported in the phase
     work([&] {
-      checkpoint::PartWriter w(dir / kCouplerPart, "coupler");
-      w.put_integer("cycle", n);
-      w.put_scalar("time", t);
-      w.put_scalar("proposal", proposal);
-      w.put_integer("out_index", out_index);
-      predictor.save(w);
-      history.save(w);
-      const double tot[5] = {sum.total.wall, sum.total.solid, sum.total.fluid, sum.total.coupler, sum.total.output};
-      w.put("run.totals", std::span<const double>(tot, 5));
-      w.commit();
+      app::as_io("the coupler's checkpoint part", [&] {
+        checkpoint::PartWriter w(dir / kCouplerPart, "coupler");
+        w.put_integer("cycle", n);
+        w.put_scalar("time", t);
+        w.put_scalar("proposal", proposal);
+        w.put_integer("out_index", out_index);
+        predictor.save(w);
+        history.save(w);
+        const double tot[5] = {sum.total.wall, sum.total.solid, sum.total.fluid, sum.total.coupler, sum.total.output};
+        w.put("run.totals", std::span<const double>(tot, 5));
+        w.commit();
 
-      nlohmann::json m = checkpoint::scene_record(ck.scene_file, ck.overrides);
-      m["parts"] = {kCouplerPart, done[0].checkpoint_written().part(), done[1].checkpoint_written().part()};
-      m["scene_hash"] = ck.scene_hash;
-      checkpoint::write_manifest(dir, n, t, m);
-      checkpoint::prune(ck.root, cfg.checkpoint.keep);
+        nlohmann::json m = checkpoint::scene_record(ck.scene_file, ck.overrides);
+        m["parts"] = {kCouplerPart, done[0].checkpoint_written().part(), done[1].checkpoint_written().part()};
+        m["scene_hash"] = ck.scene_hash;
+        checkpoint::write_manifest(dir, n, t, m);
+        checkpoint::prune(ck.root, cfg.checkpoint.keep);
+      });
     });
     spdlog::info("checkpoint of cycle {} at t = {:.9g} s: {}", n, t, dir.string());
   }
@@ -286,7 +289,7 @@ struct Loop {
       if (output_sent < 0) output_sent = now_s();
       send_both(o);
       const double began = now_s();
-      history.snapshot(n, t, last_faces, last_states);
+      app::as_io("the interface snapshot", [&] { history.snapshot(n, t, last_faces, last_states); });
       own_output += now_s() - began;
     };
     for (long n = start.cycle;; ++n) {
@@ -343,9 +346,10 @@ RunSummary run_coupled(const CouplerConfig& cfg, Hub& hub, const std::filesystem
     s.status = interrupted ? "interrupted" : "failed";
     s.message = e.what();
   } catch (const std::exception& e) {
-    s.code = 4;
+    // Typed failures keep their code (a bad restart 2, its outputs 4: common/app/errors.h); any other is 1.
+    s.code = app::exit_code_of(e);
     s.status = "failed";
-    s.message = e.what();
+    s.message = s.code == app::kExitUnforeseen ? fmt::format("unforeseen failure: {}", e.what()) : e.what();
   }
   spdlog::error("{}", s.message);
   hub.stop_all("coupler: " + s.message, true);

@@ -5,23 +5,25 @@
 #include <array>
 #include <chrono>
 
+#include "common/app/errors.h"
 #include "common/checkpoint/output_resume.h"
-#include "common/coupling/errors.h"
 
 namespace cosim::coupler {
 
 namespace {
-// The histories' lines reach the file whole or not at all (io::LineLog); a failure is the coupler's error.
+// The histories' lines reach the file whole or not at all (io::LineLog). A table that cannot be written is an I/O
+// failure; one that cannot continue from the checkpoint (shorter than it recorded) a restart that cannot be used.
 io::LineLog open(const std::filesystem::path& p, std::string_view header, const checkpoint::PartReader* resume,
                  const std::string& name) {
-  try {
-    return resume ? checkpoint::resume_log(*resume, name, p) : io::LineLog(p, header);
-  } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+  if (resume) {
+    try {
+      return checkpoint::resume_log(*resume, name, p);
+    } catch (const std::exception& e) { throw app::InputError(e.what()); }
+  }
+  return app::as_io(p.string(), [&] { return io::LineLog(p, header); });
 }
 void append(io::LineLog& log, const std::string& line) {
-  try {
-    log.append(line);
-  } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+  app::as_io("interface history", [&] { log.append(line); });
 }
 }  // namespace
 
@@ -36,7 +38,7 @@ History::History(const std::filesystem::path& dir, const checkpoint::PartReader*
   if (resume) {
     try {
       checkpoint::resume_series(*resume, "interface", interface_);
-    } catch (const std::exception& e) { throw coupling::CouplingError(e.what()); }
+    } catch (const std::exception& e) { throw app::InputError(e.what()); }
   }
 }
 

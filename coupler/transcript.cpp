@@ -49,6 +49,7 @@ std::string canonical_text(const coupling::pb::Envelope& e) {
   coupling::pb::Envelope c = e;
   auto* h = c.mutable_header();
   h->clear_busy_seconds();
+  h->clear_output_seconds();
   if (!h->token().empty()) h->set_token("<token>");
   if (c.has_hello()) c.mutable_hello()->clear_pid();
   if (c.has_welcome() && !c.welcome().heartbeat_endpoint().empty())
