@@ -68,7 +68,9 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
                        hello.program().empty() ? "the peer" : hello.program(), coupling::kProtocolVersion);
   if (hello.role() != pb::ROLE_FLUID && hello.role() != pb::ROLE_SOLID)
     return fmt::format("Hello.role: {}, expected fluid or solid", pb::Role_Name(hello.role()));
-  if (h.token() != opt_.token) return "wrong run token (this process was not started for this run)";
+  if (h.token() != opt_.token)
+    return "wrong run token (this process was not started for this run: a solver takes the run's token from "
+           "$COSIM_TOKEN, which cosim run sets, or from --token when started by hand)";
   if (hello.scene_hash() != opt_.scene_hash)
     return fmt::format("scene hash {} differs from the coupler's {} (different scene file or --set overrides)",
                        hello.scene_hash(), opt_.scene_hash);
@@ -125,6 +127,17 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
 
   if (e->has_heartbeat()) {  // heartbeats belong on the heartbeat endpoint (Welcome.heartbeat_endpoint)
     if (h.token() != opt_.token) return fail_or_ignore("heartbeat with a wrong run token");
+    // Ignored (they do not keep the peer alive), said once per peer: a solver that beats here is declared dead
+    // when a step outlasts the timeout, and the log then tells why.
+    bool& said = known == Role::Coupler ? stranger_beat_said_ : peer(known).beats_on_data;
+    if (!said)
+      spdlog::warn(
+          "{} sent a Heartbeat on the data connection, where heartbeats are ignored: they go to the "
+          "heartbeat connection, Welcome.heartbeat_endpoint = {} (docs/protocol.md, Sockets); without them "
+          "a step longer than the timeout ({:g} s) is taken for a dead peer",
+          known == Role::Coupler ? "a connection that has not said Hello" : peer(known).describe(known),
+          beats_->endpoint(), opt_.timeout);
+    said = true;
     return false;
   }
   if (e->has_hello() && known == Role::Coupler) {
@@ -207,8 +220,11 @@ void Hub::beat_and_check() {
     const double heard = std::max(p.last_seen, beats_->last_heard(r));
     if (t - heard > opt_.timeout) {
       blame(r);
-      throw PeerLost(fmt::format("{} declared dead: no message or heartbeat for {:.1f} s (timeout {:g} s)",
-                                 p.describe(r), t - heard, opt_.timeout));
+      throw PeerLost(fmt::format("{} declared dead: no message or heartbeat for {:.1f} s (timeout {:g} s){}",
+                                 p.describe(r), t - heard, opt_.timeout,
+                                 p.beats_on_data ? "; it sent its heartbeats on the data connection, not to "
+                                                   "Welcome.heartbeat_endpoint"
+                                                 : ""));
     }
   }
 }

@@ -46,6 +46,7 @@ struct Peer {
   double busy = 0;                               // sum of Header.busy_seconds received [s]
   double output = 0;                             // of which Header.output_seconds (snapshots, checkpoints) [s]
   double longest_answer = 0;                     // the longest wait for one of its data messages [s]
+  bool beats_on_data = false;                    // it sent a Heartbeat on the data connection (logged once)
   coupling::pb::Envelope hello, welcome;         // kept for the transcript
   std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"
 };
@@ -110,6 +111,7 @@ class Hub {
   double wait_ = 0;
   bool handshake_done_ = false;
   StrangerLimit strangers_;
+  bool stranger_beat_said_ = false;  // a Heartbeat from a connection before its Hello was logged
   long cycle_ = 0;
   double time_ = 0;
   std::string blamed_;

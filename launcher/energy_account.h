@@ -10,8 +10,10 @@
 
 namespace cosim::launcher {
 
-// Writes DIR/energy_account.json (atomically); returns an empty string, or why it could not (a summary missing
-// or unreadable), in which case nothing is written.
+// Writes DIR/energy_account.json (atomically) from what the summaries hold: a solver's summary.json without its
+// block (fluid: "totals", solid: "energy"; docs/protocol.md, "summary.json") leaves that part null, without totals,
+// and prints a one-line notice on stderr. Returns an empty string, or why nothing could be written (neither part
+// readable, or the write failed).
 std::string write_energy_account(const std::filesystem::path& run_dir);
 
 }  // namespace cosim::launcher
