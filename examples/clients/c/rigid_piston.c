@@ -127,6 +127,11 @@ int main(int argc, char** argv) {
     cosim_close(c);
     return 2;
   }
+  if (cosim_restart_set(c)[0]) {
+    fprintf(stderr, "[rigid_piston.c] error: --restart: this example does not restart from a checkpoint\n");
+    cosim_close(c);
+    return 2;
+  }
   cosim_set_program(c, "rigid_piston.c");
   Piston p = {1.0, 1.0, -0.5, 0.5, 2, {0.0, 0.0}, {1.0, 1.0}};
   piston_from_scene(c, &p);

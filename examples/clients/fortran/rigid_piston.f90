@@ -159,9 +159,10 @@ program rigid_piston
     end function
   end interface
 
-  if (cosim_create(c, COSIM_ROLE_SOLID) /= COSIM_OK) call stop_with(2, "create")
-  if (cosim_parse_command_line(c) /= COSIM_OK) call stop_with(2, "command line")
-  if (cosim_set_program(c, "rigid_piston.f90") /= COSIM_OK) call stop_with(2, "program")
+  if (cosim_create(c, COSIM_ROLE_SOLID) /= COSIM_OK) call stop_with(2, cosim_last_error())
+  if (cosim_parse_command_line(c) /= COSIM_OK) call stop_with(2, cosim_last_error())
+  if (len(cosim_restart_set(c)) > 0) call stop_with(2, "--restart: this example does not restart from a checkpoint")
+  if (cosim_set_program(c, "rigid_piston.f90") /= COSIM_OK) call stop_with(2, cosim_last_error())
   call piston_from_scene(c, p)
   call box_faces(p, p%left, p%right, 0.0_c_double, f)
   nf = f%count
@@ -231,20 +232,22 @@ program rigid_piston
 
 contains
 
+  ! A coupling failure: the coupler is told, exit 5.
   subroutine fail(what)
     character(*), intent(in) :: what
     write (0, '(a)') "[rigid_piston.f90] error: "//what//": "//cosim_last_error()
     call cosim_report_error(c, cosim_last_error())
     call cosim_close(c)
-    stop 5
+    stop 5, quiet=.true.
   end subroutine
 
+  ! A failure before connecting (2: the command line, 4: the output).
   subroutine stop_with(code, what)
     integer, intent(in) :: code
     character(*), intent(in) :: what
-    write (0, '(a)') "[rigid_piston.f90] error: "//what//": "//cosim_last_error()
+    write (0, '(a)') "[rigid_piston.f90] error: "//what
     call cosim_close(c)
-    error stop code
+    stop code, quiet=.true.
   end subroutine
 
 end program
