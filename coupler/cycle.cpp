@@ -75,7 +75,7 @@ struct Loop {
   double fluid_released = -1;  // when the open cycle's states went to the fluid (steady clock [s])
   double spill = 0;  // the cycle before, from its states to the fluid to its end: the pipelined fluid stepped then
   bool first_row = true;
-  double handshake_done = 0, first_row_spill = 0;  // the first cycle: from the handshake to its start
+  double first_solid_spill = 0, first_fluid_spill = 0;  // the first cycle: from each solver's Hello to its start
 
   void close_timing() {
     if (open_cycle < 0) return;
@@ -91,7 +91,10 @@ struct Loop {
     open.fluid = fluid;
     open.overlapped = cfg.scheme == coupling::Scheme::Pipelined;
     if (open.overlapped) open.fluid_spill = spill;
-    if (first_row) open.solid_spill = open.fluid_spill = first_row_spill;
+    if (first_row) {
+      open.solid_spill = first_solid_spill;
+      open.fluid_spill = first_fluid_spill;
+    }
     first_row = false;
     // The solvers' snapshots, requested at the end of the cycle before, ran beside the coupler's own there (carry)
     // and at once in both solvers; the checkpoint phase is its own stretch.
@@ -113,7 +116,10 @@ struct Loop {
     open = {};
     open_cycle = n;
     open_start = now_s();
-    if (first_row) first_row_spill = open_start - handshake_done;
+    if (first_row) {  // a solver may set itself up between its Hello and its first message
+      first_solid_spill = open_start - hub.peer(Role::Solid).last_seen;
+      first_fluid_spill = open_start - hub.peer(Role::Fluid).last_seen;
+    }
     const auto work_of = [&](Role r) { return Work{hub.peer(r).busy, hub.peer(r).output}; };
     start_f = work_of(Role::Fluid);
     start_s = work_of(Role::Solid);
@@ -276,7 +282,6 @@ struct Loop {
   void run() {
     const checkpoint::PartReader* resume = ck.restart;
     hub.handshake();
-    handshake_done = now_s();
     const Start start = resume ? restore(*resume) : Start{};
     double t = start.time, dt = 0.0;
     std::size_t next_out = 0;

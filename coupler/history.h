@@ -30,7 +30,7 @@ struct CycleTiming {
   bool overlapped = false;  // pipelined scheme: the solid's step runs during the fluid's
   // Of each solver's work reported in this cycle, what it may have done before the cycle began: the pipelined
   // fluid steps as soon as it has the states, while the cycle before still waits for the solid's proposal; in the
-  // first cycle, both may work from their handshake on [s].
+  // first cycle, each may work from its Hello on [s].
   double solid_spill = 0, fluid_spill = 0;
   double solid_on_path() const { return std::max(0.0, solid - solid_spill); }
   double fluid_on_path() const { return std::max(0.0, fluid - fluid_spill); }

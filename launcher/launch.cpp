@@ -35,6 +35,7 @@
 #include "launcher/restart_check.h"
 #include "launcher/run_summary.h"
 #include "launcher/scene_check.h"
+#include "launcher/scene_plan.h"
 
 namespace fs = std::filesystem;
 
@@ -250,77 +251,6 @@ void start_watcher(Watcher& w, const fs::path& out, const std::vector<fs::path>&
   w.fd = p[1];
 }
 
-// What the scene says about its run: coupled or fluid-only, its name, and the programs (the scene's launcher:
-// commands where the command line gives none). Prints the error and gives nothing when the scene cannot be read.
-struct ScenePlan {
-  bool coupled = false;
-  std::string name;
-  LaunchOptions eff;
-  std::vector<std::string> lines;  // what each checked program will do
-  nlohmann::json facts;            // the figures of their plans (scene_check.h)
-};
-std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
-  ScenePlan plan;
-  bool& coupled = plan.coupled;
-  std::string& name = plan.name;
-  LaunchOptions& eff = plan.eff;
-  eff = opt;
-  try {
-    config::Node root = config::load_file(opt.scene, opt.overrides);
-    coupled = root.has("solid");
-    app::refuse_coupling_without_solid(root);
-    name = root.get<std::string>("name", fs::path(opt.scene).stem().string());
-    // launcher: {fluid: CMD, solid: CMD, coupler: CMD}: the programs of this scene (e.g. a solid written in
-    // Python); {bin} is the directory of cosim, {python} the build's python directory, {scene_dir} the directory
-    // of the scene the user gave (a program kept next to the scene).
-    if (auto l = root.optional_child("launcher")) {
-      const auto expand = [&](std::string c) {
-        for (const auto& [key, value] :
-             {std::pair<std::string, std::string>{"{bin}", opt.bin_dir.string()},
-              {"{python}", python_paths(opt.bin_dir).scripts.string()},
-              {"{scene_dir}", fs::absolute(opt.scene).parent_path().lexically_normal().string()}})
-          for (std::size_t at; (at = c.find(key)) != std::string::npos;) c.replace(at, key.size(), value);
-        return c;
-      };
-      // Each key is read (and so known) even where the command line's --fluid-exe etc. override it.
-      const std::string fluid = l->get<std::string>("fluid", ""), solid = l->get<std::string>("solid", ""),
-                        coupler = l->get<std::string>("coupler", "");
-      if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(fluid);
-      if (eff.solid_cmd.empty()) eff.solid_cmd = expand(solid);
-      if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(coupler);
-      l->finish();
-    }
-    if (!root.has("fluid")) root.fail("fluid", "a fluid: section (every run has a fluid)");
-  } catch (const std::exception& e) {
-    std::cerr << "cosim: " << e.what() << "\n";
-    return std::nullopt;
-  }
-  for (const auto& [what, cmd] : {std::pair<const char*, const std::string&>{"the fluid command", eff.fluid_cmd},
-                                  {"the solid command", eff.solid_cmd},
-                                  {"the coupler command", eff.coupler_cmd}}) {
-    try {
-      split_command(cmd);
-    } catch (const std::exception& e) {
-      std::cerr << "cosim: " << what << ": " << e.what() << "\n";
-      return std::nullopt;
-    }
-  }
-  // The whole scene as each of the run's programs reads it, before anything starts or is written.
-  const SceneCheck sc{opt.scene,
-                      opt.overrides,
-                      coupled,
-                      opt.bin_dir,
-                      eff.fluid_cmd.empty(),
-                      eff.solid_cmd.empty(),
-                      eff.coupler_cmd.empty()};
-  if (const auto refusal = check_scene(sc, &plan.lines, &plan.facts)) {
-    std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
-                             refusal->message);
-    return std::nullopt;
-  }
-  return plan;
-}
-
 // The checkpoint set a restart resumes from, checked against the scene given now: every key that shapes the
 // physics must be as it was when the set was written. Prints why and gives nothing when the run cannot resume.
 std::optional<fs::path> restart_set_for(const LaunchOptions& opt, const fs::path& root) {
@@ -358,27 +288,17 @@ std::optional<fs::path> restart_set_for(const LaunchOptions& opt, const fs::path
 }
 }  // namespace
 
-int check(const LaunchOptions& opt) {
-  const auto plan = read_plan(opt);
-  if (!plan) return 2;
-  std::cout << fmt::format("{}: valid; a {} run of {}\n", opt.scene, plan->coupled ? "coupled" : "fluid-only",
-                           plan->coupled ? "the fluid, the solid and the coupler" : "the fluid");
-  for (const auto& l : plan->lines) std::cout << "  " << l << "\n";
-  if (plan->coupled)
-    if (const std::string estimate = coupled_estimate(plan->facts); !estimate.empty())
-      std::cout << "  " << estimate << "\n";
-  for (const auto& [role, cmd] : {std::pair<const char*, const std::string&>{"fluid", plan->eff.fluid_cmd},
-                                  {"solid", plan->eff.solid_cmd},
-                                  {"coupler", plan->eff.coupler_cmd}})
-    if (!cmd.empty() && (plan->coupled || std::string(role) == "fluid"))
-      std::cout << fmt::format("  {}: the scene's own program (not checked): {}\n", role, cmd);
-  return 0;
-}
-
 int run(const LaunchOptions& opt) {
   const auto plan = read_plan(opt);
   if (!plan) return 2;
-  const bool coupled = plan->coupled;
+  const bool coupled = plan->coupled();
+  if (plan->kind == RunKind::SolidOnly && !opt.restart.empty()) {
+    std::cerr << fmt::format(
+        "cosim: --restart: {} is a solid-only run, which writes no checkpoints (they are "
+        "written in coupled and fluid-only runs)\n",
+        opt.scene);
+    return 2;
+  }
   const std::string name = plan->name;
   const LaunchOptions eff = plan->eff;
   if (!opt.restart.empty() && !opt.out.empty() && fs::absolute(opt.out) != fs::absolute(opt.restart)) {
@@ -470,7 +390,7 @@ int run(const LaunchOptions& opt) {
     argv.push_back(scene.string());
     argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
     // The time driver (the coupler, or the fluid alone) writes the checkpoint sets; every process restarts.
-    if (!client || !coupled) argv.insert(argv.end(), {"--checkpoints", checkpoints.string()});
+    if (!client || plan->kind == RunKind::FluidOnly) argv.insert(argv.end(), {"--checkpoints", checkpoints.string()});
     if (!restart_set.empty()) argv.insert(argv.end(), {"--restart", restart_set.string()});
     // The token goes by the environment ($COSIM_TOKEN, set below): a command line is world-readable.
     if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint}); }
@@ -482,8 +402,10 @@ int run(const LaunchOptions& opt) {
   if (coupled)
     children.push_back(
         {"coupler", with_common(command(eff.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
-  children.push_back({"fluid", with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
-  if (coupled)
+  if (plan->has_fluid())
+    children.push_back(
+        {"fluid", with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
+  if (plan->has_solid())
     children.push_back(
         {"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
   // A restart adds to the logs of the earlier attempts, after a line that marks where it begins.
@@ -545,7 +467,7 @@ int run(const LaunchOptions& opt) {
   }
   summarise("running", fmt::format("cosim (pid {}) is running it", ::getpid()), nullptr);
   if (!opt.quiet)
-    std::cerr << fmt::format("cosim: {} run {} in {} ({})\n", coupled ? "coupled" : "fluid-only", name, out.string(),
+    std::cerr << fmt::format("cosim: {} run {} in {} ({})\n", kind_name(plan->kind), name, out.string(),
                              coupled ? endpoint : "no coupler");
   const bool tty = ::isatty(STDERR_FILENO);
   const double start_time = now_s();
@@ -594,8 +516,9 @@ int run(const LaunchOptions& opt) {
     const double every = tty ? 0.5 : opt.progress_every;
     if (!opt.quiet && now_s() - last_progress > every && now_s() - start_time > (tty ? 0.0 : every)) {
       last_progress = now_s();
-      const std::string line = coupled ? progress_text(out / "coupler" / "progress.txt", now_s() - start_time)
-                                       : fmt::format("fluid running ... {:.0f} s", now_s() - start_time);
+      const std::string line =
+          coupled ? progress_text(out / "coupler" / "progress.txt", now_s() - start_time)
+                  : fmt::format("{} running ... {:.0f} s", children.front().name, now_s() - start_time);
       if (tty) std::cerr << "\r" << line << "\033[K" << std::flush;
       else std::cerr << "cosim: " << line << "\n" << std::flush;
     }

@@ -63,7 +63,7 @@ std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::st
   std::vector<std::string> programs;
   if (c.coupled && c.check_coupler) programs.push_back("coupler");
   if (c.check_fluid) programs.push_back("fluid_solver");
-  if (c.coupled && c.check_solid) programs.push_back("solid_solver");
+  if ((c.coupled || c.solid_only) && c.check_solid) programs.push_back("solid_solver");
   for (const std::string& p : programs) {
     std::vector<std::string> argv{(c.bin_dir / p).string(), c.scene, "--check", "--quiet", "--plan-facts"};
     for (const auto& o : c.overrides) argv.insert(argv.end(), {"--set", o});

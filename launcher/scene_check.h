@@ -23,7 +23,8 @@ struct SceneCheck {
   std::vector<std::string> overrides;
   bool coupled = false;
   std::filesystem::path bin_dir;
-  bool check_fluid = true, check_solid = true, check_coupler = true;  // false: a replaced program
+  bool check_fluid = true, check_solid = true, check_coupler = true;  // false: a replaced program (or none)
+  bool solid_only = false;                                            // a scene without fluid:
 };
 
 // The first program that refuses the scene, with its message; nothing when all accept it. `plan` gets what each
