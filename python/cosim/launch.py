@@ -2,7 +2,7 @@
 
 The programs (cosim, fluid_solver, solid_solver, coupler) are looked for, in this order: the `exe` argument (the
 program, or a directory holding it), the directory in $COSIM_BIN, the bin/ of the install prefix this package
-lives in (<prefix>/bin when it is <prefix>/lib/python3/dist-packages/cosim), the bin/ of a build directory whose
+lives in (<prefix>/bin when it is <prefix>/lib/python3.X/dist-packages/cosim), the bin/ of a build directory whose
 python/ holds this package (<build>/python/cosim -> <build>/bin), and <repo>/build/bin of the source tree
 (<repo>/python/cosim).
 """

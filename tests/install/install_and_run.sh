@@ -7,7 +7,15 @@ build="$1"
 prefix="$(mktemp -d)"
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > "$prefix/install.log"
-for f in bin/cosim bin/coupler bin/fluid_solver bin/solid_solver lib/python3/dist-packages/cosim/coupling_pb2.py \
+# The package where Debian's python3 looks under /usr/local and /usr: PREFIX/lib/python3.X/dist-packages.
+site="lib/$(/usr/bin/python3 -c 'import sys; print("python%d.%d" % sys.version_info[:2])')/dist-packages"
+/usr/bin/python3 - "$site" <<'PY'
+import sys
+site = sys.argv[1]
+for prefix in ("/usr/local", "/usr"):
+    assert f"{prefix}/{site}" in sys.path, f"{prefix}/{site} is not on the path of /usr/bin/python3: {sys.path}"
+PY
+for f in bin/cosim bin/coupler bin/fluid_solver bin/solid_solver "$site/cosim/coupling_pb2.py" \
   share/cosim/python/rigid_piston.py share/cosim/examples/piston_2d.yaml share/doc/cosim/README.md share/doc/cosim/docs/methods.md; do
   [ -e "$prefix/$f" ] || { echo "missing in the install: $f"; exit 1; }
 done
@@ -21,7 +29,7 @@ fi
 cd "$prefix"  # nothing of the build tree's working directory is used
 "$prefix/bin/cosim" run "$prefix/share/cosim/examples/piston_1d.yaml" --out "$prefix/run" --quiet \
   --set coupling.time.end=0.02
-PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 - "$prefix" <<'PY'
+PYTHONPATH="$prefix/$site" /usr/bin/python3 - "$prefix" <<'PY'
 import sys
 from pathlib import Path
 import cosim
