@@ -36,6 +36,7 @@
 #include "launcher/run_summary.h"
 #include "launcher/scene_check.h"
 #include "launcher/scene_plan.h"
+#include "launcher/watcher.h"
 
 namespace fs = std::filesystem;
 
@@ -180,75 +181,6 @@ Child failure_cause(std::vector<Child>& children, const Child& first, const fs::
   for (const auto& c : children)
     if (c.name == "coupler" && !c.running && c.exit_code != 0) return c;
   return first;
-}
-
-// A process beside the launcher that outlives it. When the launcher dies without ending the run (kill -9, a
-// crash), the pipe from it closes: the watcher kills the process groups of the run's processes (they die of their
-// parent-death signal; what they started dies this way), marks run_summary.json failed naming the launcher, and
-// exits, holding the run directory's lock until then. At a normal end the launcher says so and reaps it.
-struct Watcher {
-  pid_t pid = -1;
-  int fd = -1;  // the launcher's end of the pipe
-  void tell(const std::string& line) const {
-    if (fd >= 0) [[maybe_unused]]
-      auto w = ::write(fd, line.data(), line.size());
-  }
-  void started(pid_t group) const { tell(fmt::format("P{}\n", group)); }
-  Watcher() = default;
-  Watcher(const Watcher&) = delete;
-  Watcher& operator=(const Watcher&) = delete;
-  ~Watcher() {
-    if (pid <= 0) return;
-    tell("D\n");
-    ::close(fd);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-  }
-};
-
-void start_watcher(Watcher& w, const fs::path& out, const std::vector<fs::path>& leftovers) {
-  int p[2];
-  if (::pipe2(p, O_CLOEXEC) != 0) return;
-  const pid_t launcher = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(p[0]);
-    ::close(p[1]);
-    return;
-  }
-  if (pid == 0) {
-    ::close(p[1]);
-    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) ::signal(sig, SIG_IGN);
-    std::string text;
-    char chunk[256];
-    for (;;) {
-      const ssize_t n = ::read(p[0], chunk, sizeof chunk);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      text.append(chunk, static_cast<std::size_t>(n));
-    }
-    std::istringstream lines(text);
-    std::vector<pid_t> groups;
-    bool done = false;
-    for (std::string l; std::getline(lines, l);) {
-      if (l == "D") done = true;
-      else if (l.size() > 1 && l[0] == 'P') groups.push_back(static_cast<pid_t>(std::atol(l.c_str() + 1)));
-    }
-    if (!done) {
-      for (pid_t g : groups) ::kill(-g, SIGKILL);
-      mark_launcher_died(out, launcher,
-                         fmt::format("the launcher (cosim, pid {}) died (killed by a signal or crashed) at {}; its "
-                                     "processes were killed with it",
-                                     launcher, utc_now()));
-      std::error_code ignored;
-      for (const fs::path& f : leftovers)
-        if (!f.empty()) fs::remove(f, ignored);
-    }
-    ::_exit(0);
-  }
-  ::close(p[0]);
-  w.pid = pid;
-  w.fd = p[1];
 }
 
 // The checkpoint set a restart resumes from, checked against the scene given now: every key that shapes the
