@@ -1,9 +1,14 @@
 # Writes OUT (a C++ header) with the project version and the git commit of SOURCE_DIR; rewritten only when its
-# content changes, so a build after a commit recompiles one file. Run at every build (cosim_version target).
+# content changes, so a build after a commit recompiles one file. Run at every build (cosim_version target). A tree
+# without git (a container build from a copy, a source archive) takes the commit from $COSIM_GIT_COMMIT.
 execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse --short=12 HEAD OUTPUT_VARIABLE commit
                 OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0 OR commit STREQUAL "")
-  set(commit "unknown")
+  if(NOT "$ENV{COSIM_GIT_COMMIT}" STREQUAL "")
+    set(commit "$ENV{COSIM_GIT_COMMIT}")
+  else()
+    set(commit "unknown")
+  endif()
 else()
   execute_process(COMMAND git -C "${SOURCE_DIR}" status --porcelain --untracked-files=no OUTPUT_VARIABLE dirty
                   OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
