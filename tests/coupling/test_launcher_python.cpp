@@ -207,6 +207,8 @@ TEST(CouplingClient, SilentCouplerIsDeclaredDead) {
     EXPECT_NE(std::string(e.what()).find("coupler at " + ep + " declared dead"), std::string::npos) << e.what();
   }
   const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_LT(waited, 1.5);
+  // The Welcome's 1 s timeout, plus the heartbeat checks' granularity and a loaded machine's scheduling (2.2 s
+  // seen with six processes on the two cores), well inside the 5 s in which a silent peer must be noticed.
+  EXPECT_LT(waited, 2.5);
   EXPECT_GT(waited, 0.9);
 }
