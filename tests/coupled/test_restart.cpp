@@ -22,9 +22,11 @@ std::vector<cosim::checkpoint::SetInfo> sets_of(const fs::path& run) {
   return cosim::checkpoint::complete_sets(run / "checkpoints");
 }
 
-// Every row of the run's timing.csv accounts its wall time: no cycle, the ones with snapshots and checkpoints
-// included, shows more solver, output and coupler work than wall time (negative communication) beyond 1 ms of
-// clock granularity and scheduling (before outputs had their column: down to -11 ms after each snapshot).
+// Every row of the run's timing.csv accounts its wall time: no cycle after the first, the ones with snapshots and
+// checkpoints included, shows more solver, output and coupler work than wall time (negative communication) beyond
+// 1 ms of clock granularity and scheduling (before outputs had their column: down to -11 ms after each snapshot).
+// The first cycle holds the solvers' set-up, whose start the coupler knows only as the moment it read their Hello
+// (up to a poll interval late: -1.5 ms seen with the Python piston), so it is left out.
 void expect_timing_accounts_the_wall(const fs::path& run) {
   std::istringstream in(read_text(run / "coupler" / "timing.csv"));
   std::string line;
@@ -39,7 +41,7 @@ void expect_timing_accounts_the_wall(const fs::path& run) {
     ASSERT_EQ(v.size(), 7u) << line;
     ++rows;
     EXPECT_GE(v[5], 0.0) << line;
-    if (v[6] < worst) worst = v[6], worst_cycle = static_cast<long>(v[0]);
+    if (v[0] > 0 && v[6] < worst) worst = v[6], worst_cycle = static_cast<long>(v[0]);
   }
   std::printf("%s: %ld timing rows, least communication %.3g s (cycle %ld)\n", run.filename().c_str(), rows, worst,
               worst_cycle);
