@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "fluid_solver/core/simulation.h"
@@ -14,6 +15,9 @@ struct RunRecord {
   double wall = 0;
   nlohmann::json start_totals;
   nlohmann::json extra = nlohmann::json::object();  // more top-level entries (e.g. "coupling")
+  // On a split mesh, the whole mesh's figures (every rank's sums); otherwise the simulation's own are taken.
+  std::optional<std::vector<PhaseTotals>> end_totals, inflow;
+  double cells = 0;  // interior cells of the whole mesh; 0: the simulation's
 };
 
 void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim, const RunRecord& rec);

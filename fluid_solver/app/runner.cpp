@@ -40,14 +40,15 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   j["t_end"] = s.t_end;
   j["steps"] = sim.steps();
   j["wall_time_s"] = rec.wall;
-  const double updates = static_cast<double>(sim.steps()) * static_cast<double>(sim.interior_cells());
+  const double cells = rec.cells > 0 ? rec.cells : static_cast<double>(sim.interior_cells());
+  const double updates = static_cast<double>(sim.steps()) * cells;
   j["cell_updates"] = updates;
   j["cell_updates_per_s"] = rec.wall > 0 ? updates / rec.wall : 0.0;
-  j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());
+  j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());  // a rank's
   j["threads"] = omp_get_max_threads();
   j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
-  const nlohmann::json end_totals = totals_json(s, sim.totals());
-  const std::vector<PhaseTotals> inflow = sim.boundary_inflow();
+  const nlohmann::json end_totals = totals_json(s, rec.end_totals ? *rec.end_totals : sim.totals());
+  const std::vector<PhaseTotals> inflow = rec.inflow ? *rec.inflow : sim.boundary_inflow();
   // Per phase: end - start of the flow cells' totals, less what entered through the domain boundary when asked.
   const auto change = [&](bool less_inflow) {
     nlohmann::json out = nlohmann::json::array();
@@ -96,7 +97,7 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
 // cosim check sets up a fluid state below this size to estimate its first step and snapshot size [bytes].
 constexpr double kCheckSetUpLimit = 1024.0 * 1024.0 * 1024.0;
 
-int run_fluid(const RunOptions& opt) {
+int run_fluid(const RunOptions& opt, const parallel::MpiSession& mpi) {
   if (!opt.coupled()) {  // a scene with coupling: and no solid: is not run as a fluid-only one
     try {
       app::refuse_coupling_without_solid(config::load_file(opt.scene_file, opt.overrides));
@@ -152,76 +153,7 @@ int run_fluid(const RunOptions& opt) {
     return 0;
   }
   if (opt.coupled()) return run_fluid_coupled(opt);
-  auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
-  if (!loaded) return 2;
-  FluidScene scene = std::move(*loaded);
-
-  std::unique_ptr<FluidSimulation> sim;
-  try {
-    sim = make_simulation(scene);
-  } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
-    return 2;
-  }
-  if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders
-  spdlog::info("{}: {}D, {} cells, {} phase(s), flux {}, {} thread(s)", scene.name, scene.dim, sim->interior_cells(),
-               scene.num_phases(), to_string(scene.flux), omp_get_max_threads());
-
-  app::install_interrupt_handlers();
-  io::SnapshotSeries series(opt.out_dir, "fluid");
-  RunRecord rec;
-  app::DriveOptions drive_opt{
-      scene.output_times, scene.t_end, scene.max_steps, 0.0, static_cast<double>(sim->interior_cells()),
-      "Mcell-updates/s",  opt.quiet};
-  if (!opt.restart.empty()) {
-    try {
-      const FluidRunState restored = read_fluid_part(opt.restart, *sim, series);
-      rec.start_totals = restored.start_totals;
-    } catch (const std::exception& e) {
-      spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
-      return 2;
-    }
-    if (sim->time() >= scene.t_end * (1.0 - 1e-14)) {
-      spdlog::error("--restart {}: the checkpoint is at t = {:.9g} s, at or after fluid.time.end = {:g} s",
-                    opt.restart.string(), sim->time(), scene.t_end);
-      return 2;
-    }
-    drive_opt.resumed = true;
-    drive_opt.outputs_done = series.count() > 0 ? series.count() - 1 : 0;  // the first is the initial state
-    spdlog::info("restarted from step {} at t = {:.9g} s ({})", sim->steps(), sim->time(), opt.restart.string());
-  } else {
-    rec.start_totals = totals_json(scene, sim->totals());
-    if (!opt.checkpoints.empty()) checkpoint::clear(opt.checkpoints);  // an earlier run's sets
-  }
-  // fluid.checkpoint: a set of one part (fluid.h5), complete with its manifest.
-  const auto write_checkpoint = [&] {
-    const std::filesystem::path dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
-    nlohmann::json m = checkpoint::scene_record(opt.scene_file, opt.overrides);
-    m["parts"] = {
-        write_fluid_part(dir, *sim, series, {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()})};
-    checkpoint::write_manifest(dir, sim->steps(), sim->time(), m);
-    checkpoint::prune(opt.checkpoints, scene.checkpoint.keep);
-  };
-  const auto after_step = [&](double t_prev) {
-    if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
-    app::as_io("writing a checkpoint", [&] { write_checkpoint(); });
-  };
-  const app::DriveResult res = app::drive(
-      *sim, drive_opt, [&] { write_snapshot(series, *sim); }, after_step);
-  rec.status = res.status;
-  rec.error = res.error;
-  rec.wall = res.wall;
-  const int code = res.code;
-  try {
-    write_summary(opt.out_dir, *sim, rec);
-  } catch (const std::exception& e) {
-    spdlog::error("cannot write summary.json: {}", e.what());
-    return code ? code : 4;
-  }
-  if (code == 0)
-    spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {} snapshot(s) in {}", sim->time(), sim->steps(),
-                 rec.wall, series.count(), opt.out_dir.string());
-  return code;
+  return run_fluid_blocks(opt, mpi);
 }
 
 }  // namespace cosim::fluid

@@ -4,6 +4,8 @@
 // edge and corner ghosts hold valid states too: the flux stencils never read them, but the embedded
 // boundary's image-point and sampling stencils do where a body crosses the domain boundary (they read
 // zeros there before: a zero pressure in 3D image points).
+// On a block of a split mesh (MeshBlock), the sides whose ghosts a neighbouring block's cells fill are left alone:
+// the exchange fills them, direction by direction in the same order (fill_direction between the exchanges).
 #pragma once
 
 #include <array>
@@ -26,6 +28,7 @@ class BoundaryFiller {
       for (int side = 0; side < 2; ++side) {
         const Boundary& b = scene.boundaries[d][side];
         kind_[d][side] = b.kind;
+        exchanged_[d][side] = scene.block.exchanged[d][side];
         if (b.kind != BoundaryKind::Inflow) continue;
         auto& w = inflow_[d][side];
         w.assign(Lay::kPrim, 0.0);
@@ -43,14 +46,25 @@ class BoundaryFiller {
   // The y and z ghosts, over the x ghost layers too: call it after fill_x_row on every interior row (the pass that
   // computes the rows fills their x ghosts while they are in cache).
   void fill(FieldArray& W) const {
-    for (int d = 1; d < DIM; ++d)
-      for (int side = 0; side < 2; ++side) fill_side(W, d, side);
+    for (int d = 1; d < DIM; ++d) fill_direction(W, d);
+  }
+  // The ghosts of the sides along d (d > 0) that a boundary condition fills.
+  void fill_direction(FieldArray& W, int d) const {
+    for (int side = 0; side < 2; ++side)
+      if (!exchanged_[d][side]) fill_side(W, d, side);
+  }
+  // Whether any side's ghosts come from a neighbouring block.
+  bool any_exchanged() const {
+    for (const auto& e : exchanged_)
+      if (e[0] || e[1]) return true;
+    return false;
   }
   // The x ghosts of the interior row starting at cell `base`, every variable: fill's first direction one row at a
   // time, for a pass that has the row in cache (the primitives).
   void fill_x_row(FieldArray& W, std::size_t base) const {
     const int n = g_.n[0];
     for (int side = 0; side < 2; ++side) {
+      if (exchanged_[0][side]) continue;
       const BoundaryKind kind = kind_[0][side];
       for (int layer = 1; layer <= Grid<DIM>::NG; ++layer) {
         const int ghost = side == 0 ? -layer : n - 1 + layer;
@@ -118,6 +132,7 @@ class BoundaryFiller {
 
   Grid<DIM> g_;
   std::array<std::array<BoundaryKind, 2>, 3> kind_{};
+  std::array<std::array<bool, 2>, 3> exchanged_{};
   std::array<std::array<std::vector<double>, 2>, 3> inflow_{};
 };
 

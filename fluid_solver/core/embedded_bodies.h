@@ -135,6 +135,14 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     inner_->cell_states(cells, count, out);
   }
   std::size_t interior_cells() const override { return inner_->interior_cells(); }
+  std::vector<double> conserved_cells() const override { return inner_->conserved_cells(); }
+  void set_conserved_cells(const std::vector<double>& v) override { inner_->set_conserved_cells(v); }
+  int conserved_vars() const override { return inner_->conserved_vars(); }
+  std::vector<double> account_values() const override { return inner_->account_values(); }
+  void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
+    inner_->restore_progress(time, steps, accounts);
+  }
+  void set_block_links(BlockLinks* links) override { inner_->set_block_links(links); }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
   double traffic_bytes_per_cell_update() const override { return inner_->traffic_bytes_per_cell_update(); }
   void set_pass_profiling(bool on) override { inner_->set_pass_profiling(on); }

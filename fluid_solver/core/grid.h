@@ -1,5 +1,8 @@
 // Uniform Cartesian grid with NG ghost layers on each side of every active direction.
 // Cells are stored with i (x) fastest; inactive directions have size 1 and no ghosts.
+// The grid may be one block of a larger mesh (a rank's part under MPI): `first` is the global index of its cell 0
+// along each axis, and positions come from the global mesh (origin and spacing of the whole mesh, global index), so
+// a cell has the same coordinates bit for bit whatever block holds it.
 #pragma once
 
 #include <array>
@@ -13,16 +16,23 @@ struct Grid {
   std::array<int, 3> n{1, 1, 1};       // interior cells per direction
   std::array<int, 3> padded{1, 1, 1};  // with ghosts
   std::array<std::ptrdiff_t, 3> stride{1, 0, 0};
-  std::array<double, 3> lower{0, 0, 0}, dx{1, 1, 1};
-  std::size_t total = 1;  // padded cell count
+  std::array<double, 3> lower{0, 0, 0}, dx{1, 1, 1};  // of the whole mesh
+  std::array<int, 3> first{0, 0, 0};                   // global index of this block's cell 0
+  std::size_t total = 1;                               // padded cell count
 
   Grid() = default;
-  Grid(const std::array<int, 3>& cells, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+  // The whole mesh of `cells` between lo and hi.
+  Grid(const std::array<int, 3>& cells, const std::array<double, 3>& lo, const std::array<double, 3>& hi)
+      : Grid(cells, lo, hi, {0, 0, 0}, cells) {}
+  // The block of `count` cells from global cell `from` of that mesh.
+  Grid(const std::array<int, 3>& cells, const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+       const std::array<int, 3>& from, const std::array<int, 3>& count) {
     for (int d = 0; d < 3; ++d) {
-      n[d] = d < DIM ? cells[d] : 1;
+      n[d] = d < DIM ? count[d] : 1;
+      first[d] = d < DIM ? from[d] : 0;
       padded[d] = d < DIM ? n[d] + 2 * NG : 1;
       lower[d] = lo[d];
-      dx[d] = d < DIM ? (hi[d] - lo[d]) / n[d] : 1.0;
+      dx[d] = d < DIM ? (hi[d] - lo[d]) / cells[d] : 1.0;
     }
     stride = {1, padded[0], static_cast<std::ptrdiff_t>(padded[0]) * padded[1]};
     total = static_cast<std::size_t>(padded[0]) * padded[1] * padded[2];
@@ -34,7 +44,8 @@ struct Grid {
     return static_cast<std::size_t>((i + offset(0)) + stride[1] * (j + offset(1)) + stride[2] * (k + offset(2)));
   }
   std::size_t interior_count() const { return static_cast<std::size_t>(n[0]) * n[1] * n[2]; }
-  double center(int d, int i) const { return lower[d] + (i + 0.5) * dx[d]; }
+  // Centre of block cell i along d (global index first + i).
+  double center(int d, int i) const { return lower[d] + ((first[d] + i) + 0.5) * dx[d]; }
   double cell_volume() const {
     double v = 1;
     for (int d = 0; d < DIM; ++d) v *= dx[d];

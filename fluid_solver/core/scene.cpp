@@ -400,6 +400,17 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
   }
 
   s.threads = f.get<int>("threads", 0, config::int_at_least(0));
+  if (auto par = f.optional_child("parallel")) {  // the layout of the blocks under MPI (checked against the ranks)
+    const auto r = par->get_vector("ranks", static_cast<std::size_t>(s.dim), static_cast<std::size_t>(s.dim));
+    for (int d = 0; d < s.dim; ++d) {
+      if (r[d] < 1 || r[d] != std::floor(r[d]) || r[d] > s.cells[d])
+        par->fail("ranks", fmt::format("a whole number of blocks per axis, from 1 to the cells along it ({}), got {:g}",
+                                       s.cells[d], r[d]));
+      s.parallel_ranks[d] = static_cast<int>(r[d]);
+    }
+    for (int d = s.dim; d < 3; ++d) s.parallel_ranks[d] = 1;
+    par->finish();
+  }
   f.finish();
 
   // Refused before anything is allocated: a state that cannot fit in the memory the machine has.

@@ -104,6 +104,20 @@ struct EmbeddedSettings {
   std::vector<EmbeddedBody> bodies;
 };
 
+// This process's block of the mesh when the mesh is split over ranks (set by the run, not read from the scene): its
+// cells [first, first + count) in global indices, and per axis and side whether a neighbouring block's cells fill its
+// ghost layers (an exchange; a periodic side whose partner is another block too) instead of the boundary condition.
+struct MeshBlock {
+  std::array<int, 3> first{0, 0, 0};
+  std::array<int, 3> count{0, 0, 0};  // 0: the whole mesh
+  std::array<std::array<bool, 2>, 3> exchanged{};
+  bool whole() const { return count[0] == 0; }
+  // At the domain's boundary (a boundary condition's face or the periodic seam), not between two blocks inside.
+  bool at_domain_edge(int d, int side, const std::array<int, 3>& cells) const {
+    return whole() || (side == 0 ? first[d] == 0 : first[d] + count[d] == cells[d]);
+  }
+};
+
 struct FluidScene {
   std::string name;
   int dim = 1;
@@ -133,6 +147,8 @@ struct FluidScene {
   std::vector<double> output_times;         // sorted, in (0, t_end]; a coupled run's come from the coupler
   bool coupled = false;                     // the scene has a coupling: section
   int threads = 0;                          // 0: OpenMP default
+  std::array<int, 3> parallel_ranks{0, 0, 0};  // fluid.parallel.ranks: blocks per axis under MPI; 0: chosen
+  MeshBlock block;                             // this rank's block (the whole mesh on one rank)
   checkpoint::CheckpointPolicy checkpoint;  // fluid.checkpoint (fluid-only runs); off unless given
 
   int num_phases() const { return static_cast<int>(phases.size()); }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/checkpoint/part_file.h"
+#include "fluid_solver/core/block_links.h"
 #include "fluid_solver/core/embedded_state.h"
 #include "fluid_solver/core/pass_profile.h"
 #include "fluid_solver/core/scene.h"
@@ -78,6 +79,18 @@ class FluidSimulation {
   // file and the entry when the part does not fit this scene (another mesh or phase set).
   virtual void save_state(checkpoint::PartWriter& w) const = 0;
   virtual void restore_state(const checkpoint::PartReader& r) = 0;
+  // The conserved variables of the interior cells, variable-major, i fastest (what a checkpoint holds of the state;
+  // the ghost layers are derived), and their restoration; conserved_cells().size() = variables x interior cells.
+  virtual std::vector<double> conserved_cells() const = 0;
+  virtual void set_conserved_cells(const std::vector<double>& values) = 0;
+  virtual int conserved_vars() const = 0;
+  // The accounts that run with the state (a checkpoint's besides the cells): the boundary inflow's raw sums
+  // (per phase mass, momentum[dim], energy) then the embedded mass through walls and by cells, per phase; with the
+  // time and step count.
+  virtual std::vector<double> account_values() const = 0;
+  virtual void restore_progress(double time, long steps, const std::vector<double>& accounts) = 0;
+  // On a block of a split mesh (scene().block): the links to the other blocks, which the solver keeps (not owned).
+  virtual void set_block_links(BlockLinks* links) = 0;
   virtual std::size_t interior_cells() const = 0;
   virtual std::size_t state_bytes() const = 0;  // memory of all per-cell arrays
   // Bytes a time step reads and writes per cell in its passes over the grid (the benchmark's roofline; solver.h).

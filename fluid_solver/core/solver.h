@@ -45,7 +45,8 @@ class Solver final : public FluidSimulation {
  public:
   explicit Solver(const FluidScene& scene)
       : scene_(scene),
-        g_(scene.cells, scene.lower, scene.upper),
+        g_(scene.cells, scene.lower, scene.upper, scene.block.first,
+           scene.block.whole() ? scene.cells : scene.block.count),
         gran_(NP == 2 && scene.exchange.dispersed && scene.exchange.granular.enabled),
         ncons_(Lay::cons_vars(gran_)),
         nprim_(Lay::prim_vars(gran_)) {
@@ -62,6 +63,8 @@ class Solver final : public FluidSimulation {
     else if (scene.limiter == Limiter::VanLeer) mode_ = ReconMode::VanLeer;
     else mode_ = ReconMode::MC;
     bc_ = BoundaryFiller<DIM, NP>(scene, g_, eos_);
+    for (int d = 0; d < DIM; ++d)
+      for (int side = 0; side < 2; ++side) domain_edge_[d][side] = scene.block.at_domain_edge(d, side, scene.cells);
     if (NP == 2 && scene.exchange.pressure_relaxation) trace_.fill(scene.exchange.trace_alpha);
     if (NP == 2 && scene.exchange.dispersed) trace_[NP - 1] = 2.0;  // a trace everywhere (§2.8)
     set_initial_state<DIM, NP>(scene, g_, eos_, U_);
@@ -161,6 +164,7 @@ class Solver final : public FluidSimulation {
       for (int d = 0; d < DIM; ++d) w += emb_.max_wall_speed / g_.dx[d];
       smax = std::max(smax, w);
     }
+    if (links_) smax = links_->max_over_blocks(smax);  // exact: every block takes the same step
     return scene_.cfl / smax;
   }
 
@@ -268,11 +272,10 @@ class Solver final : public FluidSimulation {
   }
 
   void save_state(checkpoint::PartWriter& w) const override {
-    w.put("fluid.conserved", U_.data);  // every padded cell as stored: a restart continues bit for bit
-    w.put("fluid.boundary_inflow", std::span<const double>(inflow_.data(), inflow_.size()));
-    std::vector<double> emb_mass(mass_by_walls_.begin(), mass_by_walls_.end());
-    emb_mass.insert(emb_mass.end(), mass_by_cells_.begin(), mass_by_cells_.end());
-    w.put("fluid.embedded_mass", emb_mass);
+    w.put("fluid.conserved_cells", conserved_cells());  // the ghosts are derived: a restart continues bit for bit
+    const std::vector<double> acc = account_values();
+    w.put("fluid.boundary_inflow", std::span<const double>(acc.data(), inflow_.size()));
+    w.put("fluid.embedded_mass", std::span<const double>(acc.data() + inflow_.size(), 2 * NP));
     w.put_scalar("fluid.time", t_);
     w.put_integer("fluid.steps", steps_);
     w.put_integer("fluid.conserved_vars", ncons_);
@@ -282,17 +285,54 @@ class Solver final : public FluidSimulation {
     if (r.integer("fluid.conserved_vars") != ncons_)
       throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}", r.path().string(),
                                            r.integer("fluid.conserved_vars"), ncons_));
-    U_.data = r.doubles("fluid.conserved", U_.data.size());
-    U0_.data = U_.data;
-    const std::vector<double> in = r.doubles("fluid.boundary_inflow", inflow_.size());
-    std::copy(in.begin(), in.end(), inflow_.begin());
+    set_conserved_cells(r.doubles("fluid.conserved_cells", static_cast<std::size_t>(ncons_) * g_.interior_count()));
+    std::vector<double> acc = r.doubles("fluid.boundary_inflow", inflow_.size());
     const std::vector<double> em = r.doubles("fluid.embedded_mass", 2 * NP);
-    std::copy(em.begin(), em.begin() + NP, mass_by_walls_.begin());
-    std::copy(em.begin() + NP, em.end(), mass_by_cells_.begin());
-    t_ = r.scalar("fluid.time");
-    steps_ = r.integer("fluid.steps");
+    acc.insert(acc.end(), em.begin(), em.end());
+    restore_progress(r.scalar("fluid.time"), r.integer("fluid.steps"), acc);
+  }
+
+  std::vector<double> account_values() const override {
+    std::vector<double> out(inflow_.begin(), inflow_.end());
+    out.insert(out.end(), mass_by_walls_.begin(), mass_by_walls_.end());
+    out.insert(out.end(), mass_by_cells_.begin(), mass_by_cells_.end());
+    return out;
+  }
+  void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
+    if (accounts.size() != inflow_.size() + 2 * NP)
+      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), inflow_.size() + 2 * NP));
+    std::copy(accounts.begin(), accounts.begin() + static_cast<std::ptrdiff_t>(inflow_.size()), inflow_.begin());
+    std::copy(accounts.end() - 2 * NP, accounts.end() - NP, mass_by_walls_.begin());
+    std::copy(accounts.end() - NP, accounts.end(), mass_by_cells_.begin());
+    t_ = time;
+    steps_ = steps;
     primitives_valid_ = false;
   }
+
+  int conserved_vars() const override { return ncons_; }
+  std::vector<double> conserved_cells() const override {
+    std::vector<double> out;
+    out.reserve(static_cast<std::size_t>(ncons_) * g_.interior_count());
+    for (int v = 0; v < ncons_; ++v)
+      for (int k = 0; k < g_.n[2]; ++k)
+        for (int j = 0; j < g_.n[1]; ++j) {
+          const double* row = U_.var(v) + g_.index(0, j, k);
+          out.insert(out.end(), row, row + g_.n[0]);
+        }
+    return out;
+  }
+  void set_conserved_cells(const std::vector<double>& values) override {
+    if (values.size() != static_cast<std::size_t>(ncons_) * g_.interior_count())
+      throw std::invalid_argument(fmt::format("{} conserved values for {} variables of {} cells", values.size(),
+                                              ncons_, g_.interior_count()));
+    const double* in = values.data();
+    for (int v = 0; v < ncons_; ++v)
+      for (int k = 0; k < g_.n[2]; ++k)
+        for (int j = 0; j < g_.n[1]; ++j, in += g_.n[0]) std::copy(in, in + g_.n[0], U_.var(v) + g_.index(0, j, k));
+    U0_.data = U_.data;
+    primitives_valid_ = false;
+  }
+  void set_block_links(BlockLinks* links) override { links_ = links; }
 
   std::vector<PhaseTotals> totals() const override {
     std::vector<PhaseTotals> out(NP);
@@ -495,6 +535,8 @@ class Solver final : public FluidSimulation {
   FieldArray U_, U0_, R_, W_;
   std::vector<Scratch> scratch_;
   BoundaryFiller<DIM, NP> bc_;
+  BlockLinks* links_ = nullptr;                      // the other blocks of a split mesh (none: the whole mesh)
+  std::array<std::array<bool, 2>, 3> domain_edge_{};  // per axis and side: the block's faces there are the domain's
   ReconMode mode_ = ReconMode::VanLeer;
   double t_ = 0.0;
   long steps_ = 0;

@@ -124,9 +124,9 @@ inline void Solver<DIM, NP, FK>::report_bad_cell() const {
                              scene_.phases[k].name, k == 0 ? a0 : 1.0 - a0, rho, p, eos_[k].pinf);
         }
         if (!bad) continue;
-        std::string where = fmt::format("cell (i={}", i);
-        if (DIM > 1) where += fmt::format(", j={}", j);
-        if (DIM > 2) where += fmt::format(", k={}", kk);
+        std::string where = fmt::format("cell (i={}", g_.first[0] + i);  // global indices on a block
+        if (DIM > 1) where += fmt::format(", j={}", g_.first[1] + j);
+        if (DIM > 2) where += fmt::format(", k={}", g_.first[2] + kk);
         where += fmt::format(") at x=({:.6g}", g_.center(0, i));
         if (DIM > 1) where += fmt::format(", {:.6g}", g_.center(1, j));
         if (DIM > 2) where += fmt::format(", {:.6g}", g_.center(2, kk));

@@ -14,7 +14,13 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
   primitives_valid_ = primitives_bad_ = false;
   {
     PassClock clk(pass_acc(Pass::Boundaries));
-    bc_.fill(W_);  // after the primitives pass has filled the x ghosts (fill_x_row)
+    // After the primitives pass has filled the x ghosts of the boundary conditions (fill_x_row): the neighbouring
+    // blocks' x ghosts, then per axis the boundary conditions' and the neighbours' ghosts over those before it.
+    if (links_) links_->exchange_ghosts(W_, 0);
+    for (int d = 1; d < DIM; ++d) {
+      bc_.fill_direction(W_, d);
+      if (links_) links_->exchange_ghosts(W_, d);
+    }
     if (emb_.active) {
       fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
       fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);

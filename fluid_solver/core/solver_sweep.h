@@ -31,8 +31,8 @@ inline void Solver<DIM, NP, FK>::x_row(Scratch& sc, std::size_t base, double* ed
     blocked_face_fluxes<0, RM>(high_side, base, n0 + 1, edges, 0, edges, 1, sc.mini, sc.face1, faces, flen);
   };
   PassClock clk(pass_acc(Pass::Apply));
-  add_boundary_flux<0>(sc, faces, flen, 0, base, 1);
-  add_boundary_flux<0>(sc, faces, flen, n0, base + n0 - 1, -1);
+  if (domain_edge_[0][0]) add_boundary_flux<0>(sc, faces, flen, 0, base, 1);
+  if (domain_edge_[0][1]) add_boundary_flux<0>(sc, faces, flen, n0, base + n0 - 1, -1);
   if (emb_.active && !emb_.blocked[0].empty()) {  // a blocked face's two cells get different fluxes
     blocked(true);
     apply_right<0, DIM == 1>(faces, flen, base, 0, n0, inv_dx);
@@ -110,9 +110,9 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
         };
         {
           PassClock clk(pass_acc(Pass::Apply));
-          if (layer == 0)
+          if (layer == 0 && domain_edge_[D][0])
             for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base + f, 1);
-          if (layer == nD)
+          if (layer == nD && domain_edge_[D][1])
             for (int f = 0; f < n0; ++f) add_boundary_flux<D>(sc, high, flen, f, base - s + f, -1);
           if (layer > a) {  // the cell row below is complete: both of its face rows are known
             blocked(false);

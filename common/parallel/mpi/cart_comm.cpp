@@ -1,0 +1,251 @@
+#include "common/parallel/mpi/cart_comm.h"
+
+#include <mpi.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+#include <thread>
+
+namespace cosim::parallel {
+
+namespace {
+
+MPI_Comm& as_comm(void* p) { return *static_cast<MPI_Comm*>(p); }
+
+// Waits for the requests, testing them and sleeping between tests once a few microseconds have passed: a rank that
+// waits leaves its core to the ranks it waits for (oversubscribed), at a cost of at most the longest sleep (100 us)
+// of latency on a dedicated core.
+void wait_passively(int count, MPI_Request* requests) {
+  int done = 0;
+  for (int spins = 0; spins < 64; ++spins) {
+    MPI_Testall(count, requests, &done, MPI_STATUSES_IGNORE);
+    if (done) return;
+  }
+  auto pause = std::chrono::microseconds(2);
+  while (true) {
+    MPI_Testall(count, requests, &done, MPI_STATUSES_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(100));
+  }
+}
+
+}  // namespace
+
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+MpiSession::MpiSession(int* argc, char*** argv) {
+  if (!launched_by_mpi()) return;
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);  // MPI from the master thread only
+  active_ = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &local_size_);
+  MPI_Comm_free(&node);
+}
+
+MpiSession::~MpiSession() {
+  if (active_) MPI_Finalize();
+}
+
+void MpiSession::abort_all(int code) {
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  if (initialised && !finalised) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+std::string MpiSession::describe() const {
+  return active_ ? fmt::format("rank {} of {}", rank_, size_) : std::string();
+}
+
+CartComm::CartComm(const MpiSession& session, const Layout& layout, const std::array<bool, 3>& periodic,
+                   const Index3& cells)
+    : layout_(layout), cells_(cells), rank_(session.rank()) {
+  if (layout.ranks() != session.size())
+    throw std::invalid_argument(fmt::format("a layout of {} blocks for {} ranks", layout.ranks(), session.size()));
+  block_ = block_of(layout, rank_, cells);
+  if (!session.active()) return;
+  comm_ = new MPI_Comm;
+  int dims[3] = {layout.blocks[0], layout.blocks[1], layout.blocks[2]};
+  int periods[3] = {periodic[0], periodic[1], periodic[2]};
+  MPI_Cart_create(MPI_COMM_WORLD, 3, dims, periods, 0, &as_comm(comm_));  // rank order kept (block_of's)
+  for (int d = 0; d < 3; ++d) {
+    int lo = MPI_PROC_NULL, hi = MPI_PROC_NULL;
+    if (layout.blocks[d] > 1) MPI_Cart_shift(as_comm(comm_), d, 1, &lo, &hi);
+    neighbour_[d] = {lo == MPI_PROC_NULL ? -1 : lo, hi == MPI_PROC_NULL ? -1 : hi};
+  }
+}
+
+CartComm::~CartComm() {
+  if (!comm_) return;
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (!finalised) MPI_Comm_free(&as_comm(comm_));
+  delete static_cast<MPI_Comm*>(comm_);
+}
+
+void CartComm::exchange_ghosts(double* const* vars, int nvars, const PaddedBox& box, int d) {
+  if (neighbour_[d][0] < 0 && neighbour_[d][1] < 0) return;
+  const Index3 p = box.padded();
+  const std::ptrdiff_t stride[3] = {1, p[0], static_cast<std::ptrdiff_t>(p[0]) * p[1]};
+  // The range of the other axes: those before d over their ghost layers too, those after d their interior.
+  int lo[3], hi[3];
+  for (int e = 0; e < 3; ++e) {
+    const int off = e < box.dim ? box.ng : 0;
+    lo[e] = e < d && e < box.dim ? 0 : off;
+    hi[e] = e < d && e < box.dim ? p[e] : off + box.n[e];
+  }
+  const std::size_t per_layer =
+      static_cast<std::size_t>(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) / (hi[d] - lo[d]);
+  const std::size_t count = per_layer * box.ng * nvars;
+  // Visits the cells of layers [first, first + ng) along d (padded index), variable by variable, layer by layer.
+  const auto visit = [&](int first, auto&& f) {
+    std::size_t o = 0;
+    for (int v = 0; v < nvars; ++v)
+      for (int layer = first; layer < first + box.ng; ++layer) {
+        int a[3] = {lo[0], lo[1], lo[2]}, b[3] = {hi[0], hi[1], hi[2]};
+        a[d] = layer;
+        b[d] = layer + 1;
+        for (int k = a[2]; k < b[2]; ++k)
+          for (int j = a[1]; j < b[1]; ++j) {
+            double* row = vars[v] + k * stride[2] + j * stride[1];
+            for (int i = a[0]; i < b[0]; ++i) f(row[i], o++);
+          }
+      }
+  };
+  const int ng = box.ng, n = box.n[d];
+  MPI_Request req[4];
+  int nreq = 0;
+  // Tags: 2 d + side of the sender's face: what goes through a block's low face arrives at its neighbour's high side.
+  for (int side = 0; side < 2; ++side) {
+    if (neighbour_[d][side] < 0) continue;
+    recv_[side].resize(count);
+    MPI_Irecv(recv_[side].data(), static_cast<int>(count), MPI_DOUBLE, neighbour_[d][side], 2 * d + (1 - side),
+              as_comm(comm_), &req[nreq++]);
+  }
+  for (int side = 0; side < 2; ++side) {
+    if (neighbour_[d][side] < 0) continue;
+    send_[side].resize(count);
+    visit(side == 0 ? ng : n, [&](double& x, std::size_t o) { send_[side][o] = x; });  // the interior next to it
+    MPI_Isend(send_[side].data(), static_cast<int>(count), MPI_DOUBLE, neighbour_[d][side], 2 * d + side,
+              as_comm(comm_), &req[nreq++]);
+    halo_bytes_ += 8.0 * static_cast<double>(count);
+  }
+  wait_passively(nreq, req);
+  for (int side = 0; side < 2; ++side) {
+    if (neighbour_[d][side] < 0) continue;
+    visit(side == 0 ? 0 : ng + n, [&](double& x, std::size_t o) { x = recv_[side][o]; });  // its ghost layers
+  }
+}
+
+double CartComm::max(double local) const {
+  if (!comm_) return local;
+  double out = local;
+  MPI_Request r;
+  MPI_Iallreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  return out;
+}
+
+double CartComm::min(double local) const { return -max(-local); }
+
+void CartComm::sum(std::span<double> values) const {
+  if (!comm_ || values.empty()) return;
+  std::vector<double> in(values.begin(), values.end());
+  MPI_Request r;
+  MPI_Iallreduce(in.data(), values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, as_comm(comm_), &r);
+  wait_passively(1, &r);
+}
+
+bool CartComm::any(bool local) const { return max(local ? 1.0 : 0.0) > 0.0; }
+
+std::vector<double> CartComm::gather_cells(std::span<const double> local, int ncomp) const {
+  if (!comm_) return {local.begin(), local.end()};
+  const int ranks = size();
+  std::vector<int> counts(ranks), displs(ranks);
+  for (int r = 0, at = 0; r < ranks; ++r) {
+    counts[r] = static_cast<int>(block_of(layout_, r, cells_).cells() * ncomp);
+    displs[r] = at;
+    at += counts[r];
+  }
+  if (static_cast<long>(local.size()) != counts[rank_])
+    throw std::invalid_argument(fmt::format("rank {}: {} values to gather for a block of {}", rank_, local.size(),
+                                            counts[rank_]));
+  std::vector<double> packed(rank_ == 0 ? static_cast<std::size_t>(displs.back() + counts.back()) : 0);
+  MPI_Request req;
+  MPI_Igatherv(local.data(), counts[rank_], MPI_DOUBLE, packed.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
+               as_comm(comm_), &req);
+  wait_passively(1, &req);
+  if (rank_ != 0) return {};
+  std::vector<double> global(packed.size());
+  for (int r = 0; r < ranks; ++r) {  // each block's rows into the mesh's
+    const Block b = block_of(layout_, r, cells_);
+    const double* in = packed.data() + displs[r];
+    const std::size_t len = static_cast<std::size_t>(b.upper[0] - b.lower[0]) * ncomp;
+    for (int k = b.lower[2]; k < b.upper[2]; ++k)
+      for (int j = b.lower[1]; j < b.upper[1]; ++j, in += len) {
+        const std::size_t at = ((static_cast<std::size_t>(k) * cells_[1] + j) * cells_[0] + b.lower[0]) * ncomp;
+        std::copy(in, in + len, global.begin() + static_cast<std::ptrdiff_t>(at));
+      }
+  }
+  return global;
+}
+
+std::vector<double> CartComm::scatter_cells(std::span<const double> global, int ncomp) const {
+  if (!comm_) return {global.begin(), global.end()};
+  const int ranks = size();
+  std::vector<int> counts(ranks), displs(ranks);
+  std::vector<double> packed;
+  for (int r = 0, at = 0; r < ranks; ++r) {
+    counts[r] = static_cast<int>(block_of(layout_, r, cells_).cells() * ncomp);
+    displs[r] = at;
+    at += counts[r];
+  }
+  if (rank_ == 0) {
+    packed.resize(global.size());
+    double* out = packed.data();
+    for (int r = 0; r < ranks; ++r) {
+      const Block b = block_of(layout_, r, cells_);
+      const std::size_t len = static_cast<std::size_t>(b.upper[0] - b.lower[0]) * ncomp;
+      for (int k = b.lower[2]; k < b.upper[2]; ++k)
+        for (int j = b.lower[1]; j < b.upper[1]; ++j, out += len) {
+          const std::size_t at = ((static_cast<std::size_t>(k) * cells_[1] + j) * cells_[0] + b.lower[0]) * ncomp;
+          std::copy(global.begin() + static_cast<std::ptrdiff_t>(at),
+                    global.begin() + static_cast<std::ptrdiff_t>(at + len), out);
+        }
+    }
+  }
+  std::vector<double> local(static_cast<std::size_t>(counts[rank_]));
+  MPI_Request req;
+  MPI_Iscatterv(packed.data(), counts.data(), displs.data(), MPI_DOUBLE, local.data(), counts[rank_], MPI_DOUBLE, 0,
+                as_comm(comm_), &req);
+  wait_passively(1, &req);
+  return local;
+}
+
+std::string CartComm::broadcast(const std::string& from_root) const {
+  if (!comm_) return from_root;
+  long n = static_cast<long>(from_root.size());
+  MPI_Request r;
+  MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  std::string out = rank_ == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
+  MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  return out;
+}
+
+}  // namespace cosim::parallel

@@ -1,0 +1,160 @@
+// The standalone fluid run over the blocks of a split mesh: one block per rank (one rank without a launcher), the
+// ghost layers exchanged between them, one snapshot series, summary and checkpoint sets of the whole mesh.
+// A failure on one rank (a bad state, an I/O error) ends every rank: that rank writes the summary with its message
+// and aborts the run with its exit code, so no rank waits in an exchange for one that stopped.
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include "common/app/threads.h"
+#include "common/checkpoint/checkpoint_sets.h"
+#include "common/config/config.h"
+#include "fluid_solver/app/run_summary.h"
+#include "fluid_solver/app/runner.h"
+#include "fluid_solver/io/fluid_output.h"
+#include "fluid_solver/parallel/block_io.h"
+#include "fluid_solver/parallel/mesh_split.h"
+
+namespace cosim::fluid {
+
+namespace {
+
+// Threads per rank when neither the scene nor --threads chose: the cores this rank may use shared by the ranks on
+// its node, and no more than its rows of cells keep busy (app::threads_for).
+int threads_per_rank(const FluidScene& scene, const parallel::MpiSession& mpi) {
+  if (scene.threads > 0) return scene.threads;
+  const int cores = std::max(1, omp_get_num_procs() / std::max(1, mpi.ranks_on_this_node()));
+  const long rows = static_cast<long>(scene.block.count[1]) * scene.block.count[2];
+  return std::max(1, std::min(cores, app::threads_for(rows, 16)));
+}
+
+nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene& scene, double halo_bytes) {
+  const auto& b = comm.layout().blocks;
+  return {{"ranks", comm.size()},
+          {"layout", std::vector<int>(b.begin(), b.begin() + scene.dim)},
+          {"threads_per_rank", omp_get_max_threads()},
+          {"halo_bytes", halo_bytes}};
+}
+
+}  // namespace
+
+int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
+  const bool root = mpi.rank() == 0;
+  if (!root) spdlog::set_level(spdlog::level::warn);  // one voice for what every rank says alike
+  auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
+  if (!loaded) return 2;
+  FluidScene scene = std::move(*loaded);
+
+  std::unique_ptr<parallel::CartComm> comm;
+  std::unique_ptr<CartBlockLinks> links;
+  std::unique_ptr<FluidSimulation> sim;
+  try {
+    const parallel::Layout layout = fluid_layout(scene, mpi.size());
+    comm = std::make_unique<parallel::CartComm>(mpi, layout, periodic_axes(scene), scene.cells);
+    assign_block(scene, *comm);
+    scene.threads = threads_per_rank(scene, mpi);
+    sim = make_simulation(scene);
+    links = std::make_unique<CartBlockLinks>(*comm, scene);
+    sim->set_block_links(links.get());
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
+    return 2;
+  }
+  if (root && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
+    if (comm->size() == 1) return 4;
+    parallel::MpiSession::abort_all(4);
+  }
+  double cells = 1;
+  for (int d = 0; d < scene.dim; ++d) cells *= scene.cells[d];
+  const auto& blocks = comm->layout().blocks;
+  spdlog::info("{}: {}D, {:.0f} cells, {} phase(s), flux {}, {} rank(s) ({} blocks), {} thread(s) per rank", scene.name,
+               scene.dim, cells, scene.num_phases(), to_string(scene.flux), comm->size(),
+               fmt::join(blocks.begin(), blocks.begin() + scene.dim, " x "), omp_get_max_threads());
+
+  app::install_interrupt_handlers();
+  std::unique_ptr<io::SnapshotSeries> series;
+  if (root) series = std::make_unique<io::SnapshotSeries>(opt.out_dir, "fluid");
+  RunRecord rec;
+  rec.cells = cells;
+  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, 0.0, cells, "Mcell-updates/s",
+                              opt.quiet || !root};
+  // A failure on this rank alone: its summary and message, then every rank ends with its code.
+  const auto fail_alone = [&](int code, const std::string& error) {
+    rec.status = code == 130 ? "interrupted" : "failed";
+    rec.error = fmt::format("{} (block of cells [{}, {}) x [{}, {}) x [{}, {}))", error, scene.block.first[0],
+                            scene.block.first[0] + scene.block.count[0], scene.block.first[1],
+                            scene.block.first[1] + scene.block.count[1], scene.block.first[2],
+                            scene.block.first[2] + scene.block.count[2]);
+    spdlog::error("{}: {}", mpi.describe(), rec.error);
+    rec.extra["parallel"] = parallel_record(*comm, scene, comm->halo_bytes());
+    rec.extra["parallel"]["failed_rank"] = comm->rank();
+    try {
+      write_summary(opt.out_dir, *sim, rec);  // this rank's totals only: the others cannot be asked
+    } catch (const std::exception& e) {
+      spdlog::error("cannot write summary.json: {}", e.what());
+    }
+    parallel::MpiSession::abort_all(code);
+  };
+  if (!opt.restart.empty()) {
+    try {
+      const FluidRunState restored = read_fluid_part_over_blocks(opt.restart, *sim, series.get(), *comm);
+      rec.start_totals = restored.start_totals;
+    } catch (const std::exception& e) {
+      spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
+      return 2;
+    }
+    if (sim->time() >= scene.t_end * (1.0 - 1e-14)) {
+      spdlog::error("--restart {}: the checkpoint is at t = {:.9g} s, at or after fluid.time.end = {:g} s",
+                    opt.restart.string(), sim->time(), scene.t_end);
+      return 2;
+    }
+    drive_opt.resumed = true;
+    drive_opt.outputs_done = root ? (series->count() > 0 ? series->count() - 1 : 0) : 0;
+    drive_opt.outputs_done = static_cast<std::size_t>(comm->max(static_cast<double>(drive_opt.outputs_done)));
+    spdlog::info("restarted from step {} at t = {:.9g} s ({})", sim->steps(), sim->time(), opt.restart.string());
+  } else {
+    rec.start_totals = totals_json(scene, totals_over_blocks(*sim, *comm));
+    if (root && !opt.checkpoints.empty()) checkpoint::clear(opt.checkpoints);  // an earlier run's sets
+  }
+  // fluid.checkpoint: a set of one part (fluid.h5, the whole mesh), complete with its manifest.
+  const auto write_checkpoint = [&] {
+    std::filesystem::path dir;
+    if (root) dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
+    const std::string part = write_fluid_part_over_blocks(
+        dir, *sim, series.get(), {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()}, *comm);
+    if (!root) return;
+    nlohmann::json m = checkpoint::scene_record(opt.scene_file, opt.overrides);
+    m["parts"] = {part};
+    checkpoint::write_manifest(dir, sim->steps(), sim->time(), m);
+    checkpoint::prune(opt.checkpoints, scene.checkpoint.keep);
+  };
+  const auto after_step = [&](double t_prev) {
+    if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
+    app::as_io("writing a checkpoint", [&] { write_checkpoint(); });
+  };
+  const app::DriveResult res = app::drive(
+      *sim, drive_opt, [&] { write_snapshot_over_blocks(series.get(), *sim, *comm); }, after_step);
+  rec.status = res.status;
+  rec.error = res.error;
+  rec.wall = res.wall;
+  if (res.code != 0 && comm->size() > 1) fail_alone(res.code, res.error);
+  rec.end_totals = totals_over_blocks(*sim, *comm);
+  rec.inflow = inflow_over_blocks(*sim, *comm);
+  rec.wall = comm->max(rec.wall);
+  std::vector<double> halo{comm->halo_bytes()};
+  comm->sum(halo);
+  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0]);
+  if (!root) return 0;
+  try {
+    write_summary(opt.out_dir, *sim, rec);
+  } catch (const std::exception& e) {
+    spdlog::error("cannot write summary.json: {}", e.what());
+    return res.code ? res.code : 4;
+  }
+  if (res.code != 0) return res.code;
+  spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {} snapshot(s) in {}", sim->time(), sim->steps(), rec.wall,
+               series->count(), opt.out_dir.string());
+  return 0;
+}
+
+}  // namespace cosim::fluid

@@ -1,0 +1,157 @@
+#include "fluid_solver/parallel/block_io.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "common/checkpoint/checkpoint_sets.h"
+#include "common/checkpoint/output_resume.h"
+#include "common/checkpoint/part_file.h"
+#include "common/io/atomic_file.h"
+#include "fluid_solver/io/fluid_output.h"
+
+namespace cosim::fluid {
+
+namespace {
+
+// Per phase mass, momentum[3], energy, flattened, summed over the ranks (in rank order: the last bits may differ
+// from one rank's sum over the same cells).
+std::vector<PhaseTotals> summed(std::vector<PhaseTotals> t, const parallel::CartComm& comm) {
+  std::vector<double> flat;
+  for (const PhaseTotals& p : t) {
+    flat.push_back(p.mass);
+    flat.insert(flat.end(), p.momentum.begin(), p.momentum.end());
+    flat.push_back(p.energy);
+  }
+  comm.sum(flat);
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    t[k].mass = flat[5 * k];
+    for (int d = 0; d < 3; ++d) t[k].momentum[d] = flat[5 * k + 1 + d];
+    t[k].energy = flat[5 * k + 4];
+  }
+  return t;
+}
+
+}  // namespace
+
+std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  return summed(sim.totals(), comm);
+}
+
+std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  return summed(sim.boundary_inflow(), comm);
+}
+
+void write_snapshot_over_blocks(io::SnapshotSeries* series, const FluidSimulation& sim,
+                                const parallel::CartComm& comm) {
+  if (comm.size() == 1) return write_snapshot(*series, sim);
+  const FluidScene& s = sim.scene();
+  const SnapshotFields fields(sim);
+  const std::size_t cells = sim.interior_cells();
+  std::vector<std::vector<double>> global;
+  std::vector<io::FieldView> views;
+  for (const io::FieldView& v : fields.views) {
+    global.push_back(
+        comm.gather_cells(std::span<const double>(v.data, cells * static_cast<std::size_t>(v.ncomp)), v.ncomp));
+    views.push_back({v.name, global.back().data(), v.ncomp, v.center});
+  }
+  if (comm.rank() != 0) return;
+  for (std::size_t i = 0; i < views.size(); ++i) views[i].data = global[i].data();  // after the vector settled
+  io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
+  for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+  const std::size_t index = series->count();
+  const std::filesystem::path h5 = series->write(sim.time(), sim.steps(), g, views);
+  if (index == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
+}
+
+std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
+                                         const io::SnapshotSeries* series, const FluidRunState& run,
+                                         const parallel::CartComm& comm) {
+  if (comm.size() == 1) return write_fluid_part(dir, sim, *series, run);
+  const std::vector<double> local = sim.conserved_cells();
+  const std::size_t cells = sim.interior_cells();
+  const int vars = sim.conserved_vars();
+  std::vector<double> global;
+  for (int v = 0; v < vars; ++v) {  // variable by variable: rank 0 holds the mesh's cells of one more at a time
+    const std::vector<double> g =
+        comm.gather_cells(std::span<const double>(local.data() + static_cast<std::size_t>(v) * cells, cells), 1);
+    global.insert(global.end(), g.begin(), g.end());
+  }
+  std::vector<double> accounts = sim.account_values();
+  comm.sum(accounts);
+  if (comm.rank() == 0) {
+    const std::size_t inflow = accounts.size() - 2 * static_cast<std::size_t>(sim.scene().num_phases());
+    checkpoint::PartWriter w(dir / kFluidPart, "fluid");
+    w.put_integer("cycle", run.cycle);
+    w.put_scalar("time", run.time);
+    w.put("fluid.conserved_cells", global);
+    w.put("fluid.boundary_inflow", std::span<const double>(accounts.data(), inflow));
+    w.put("fluid.embedded_mass", std::span<const double>(accounts.data() + inflow, accounts.size() - inflow));
+    w.put_scalar("fluid.time", sim.time());
+    w.put_integer("fluid.steps", sim.steps());
+    w.put_integer("fluid.conserved_vars", vars);
+    checkpoint::put_series(w, "fluid", *series);
+    w.put_text("run.start_totals", run.start_totals.dump());
+    w.put_text("run.counters", run.counters.dump());
+    w.commit();
+  }
+  return kFluidPart;
+}
+
+FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
+                                          io::SnapshotSeries* series, const parallel::CartComm& comm) {
+  if (comm.size() == 1) return read_fluid_part(set, sim, *series);
+  // Rank 0 reads and checks the part; what it found (or why it failed) reaches every rank.
+  const int vars = sim.conserved_vars();
+  std::size_t global_cells = 1;
+  for (int d = 0; d < 3; ++d) global_cells *= static_cast<std::size_t>(comm.cells()[d]);
+  nlohmann::json head;
+  std::vector<double> cells;
+  if (comm.rank() == 0) {
+    try {
+      const checkpoint::PartReader r = checkpoint::open_verified_part(set, kFluidPart, "fluid");
+      if (r.integer("fluid.conserved_vars") != vars)
+        throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}",
+                                             r.path().string(), r.integer("fluid.conserved_vars"), vars));
+      cells = r.doubles("fluid.conserved_cells", static_cast<std::size_t>(vars) * global_cells);
+      std::vector<double> accounts = r.doubles("fluid.boundary_inflow");
+      const std::vector<double> em = r.doubles("fluid.embedded_mass");
+      accounts.insert(accounts.end(), em.begin(), em.end());
+      head = {{"cycle", r.integer("cycle")},
+              {"run_time", r.scalar("time")},
+              {"time", r.scalar("fluid.time")},
+              {"steps", r.integer("fluid.steps")},
+              {"accounts", accounts},
+              {"start_totals", r.text("run.start_totals")},
+              {"counters", r.text("run.counters")}};
+      checkpoint::resume_series(r, "fluid", *series);
+      io::remove_numbered_files(series->xdmf_path().parent_path(), "fluid_interface_", ".csv", series->count());
+    } catch (const std::exception& e) {
+      head = {{"error", e.what()}};
+    }
+  }
+  head = nlohmann::json::parse(comm.broadcast(head.dump()));
+  if (head.contains("error")) throw std::runtime_error(head["error"].get<std::string>());
+  std::vector<double> local;
+  for (int v = 0; v < vars; ++v) {
+    const std::span<const double> g =
+        comm.rank() == 0 ? std::span<const double>(cells.data() + static_cast<std::size_t>(v) * global_cells,
+                                                   global_cells)
+                         : std::span<const double>();
+    const std::vector<double> part = comm.scatter_cells(g, 1);
+    local.insert(local.end(), part.begin(), part.end());
+  }
+  sim.set_conserved_cells(local);
+  // The accounts are sums over the blocks: rank 0 carries the global sums on, the others start from zero.
+  std::vector<double> accounts = head["accounts"].get<std::vector<double>>();
+  if (comm.rank() != 0) std::fill(accounts.begin(), accounts.end(), 0.0);
+  sim.restore_progress(head["time"].get<double>(), head["steps"].get<long>(), accounts);
+  FluidRunState run;
+  run.cycle = head["cycle"].get<long>();
+  run.time = head["run_time"].get<double>();
+  run.start_totals = nlohmann::json::parse(head["start_totals"].get<std::string>());
+  run.counters = nlohmann::json::parse(head["counters"].get<std::string>());
+  return run;
+}
+
+}  // namespace cosim::fluid

@@ -1,0 +1,41 @@
+// How a fluid scene's mesh is split over the ranks of a run: the layout of blocks (fluid.parallel.ranks, or the
+// least cut area), what cannot run on more than one block yet, and each rank's MeshBlock with its links.
+#pragma once
+
+#include <memory>
+
+#include "common/parallel/mpi/cart_comm.h"
+#include "fluid_solver/core/block_links.h"
+#include "fluid_solver/core/grid.h"
+#include "fluid_solver/core/scene.h"
+
+namespace cosim::fluid {
+
+// Cells a block needs along a split axis: the ghost layers it hands its neighbours come from its own cells.
+inline constexpr int kMinBlockCells = Grid<1>::NG;
+
+// The layout for `ranks` ranks: the scene's fluid.parallel.ranks when given (checked), else the one with the least
+// cut area. Throws config::ConfigError naming the scene's key (or std::invalid_argument) when none fits, and
+// refuses what does not run on several blocks yet (embedded bodies, a coupled fluid).
+parallel::Layout fluid_layout(const FluidScene& scene, int ranks);
+
+// Per axis: the two end blocks are neighbours (a periodic axis split into several blocks).
+std::array<bool, 3> periodic_axes(const FluidScene& scene);
+
+// The scene's block on this rank (scene.block), from the communicator's block of the mesh.
+void assign_block(FluidScene& scene, const parallel::CartComm& comm);
+
+// The solver's links to the other blocks over the communicator (ghost exchanges of the primitives, the step).
+class CartBlockLinks final : public BlockLinks {
+ public:
+  CartBlockLinks(parallel::CartComm& comm, const FluidScene& scene);
+  void exchange_ghosts(FieldArray& W, int d) override;
+  double max_over_blocks(double local) override { return comm_.max(local); }
+
+ private:
+  parallel::CartComm& comm_;
+  parallel::PaddedBox box_;
+  std::vector<double*> vars_;
+};
+
+}  // namespace cosim::fluid
