@@ -1,0 +1,106 @@
+// Runs of fluid_solver on several ranks (mpirun, oversubscribed on this machine's cores) and the comparison of two
+// runs' snapshot series, bit for bit.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/io/hdf5_file.h"
+#include "tests/support/scratch_dir.h"
+
+namespace cosim::test {
+
+struct RankRun {
+  int code = -1;
+  std::string log;  // stdout and stderr
+  double seconds = 0;
+};
+
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+inline std::string scene_path(const std::string& name) {
+  return std::string(COSIM_SOURCE_DIR) + "/configs/" + name + ".yaml";
+}
+
+// A scene file in the scratch directory, for scenes written by a test.
+inline std::string write_scene(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = scratch_path(name + "_scene");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / (name + ".yaml")) << text;
+  return (dir / (name + ".yaml")).string();
+}
+
+// The mpirun prefix for `ranks` ranks (no prefix for one: the solver started alone, as a user would).
+inline std::string launcher(int ranks) {
+  if (ranks <= 1) return "";
+  return "mpirun --allow-run-as-root --oversubscribe --bind-to none -np " + std::to_string(ranks) + " ";
+}
+
+// fluid_solver SCENE --out OUT on `ranks` ranks, one thread each, at most `limit_s` seconds.
+inline RankRun run_fluid_ranks(int ranks, const std::string& scene, const std::filesystem::path& out,
+                               const std::string& extra = "", int limit_s = 300) {
+  const std::filesystem::path log = out.string() + ".log";
+  std::filesystem::create_directories(out.parent_path());
+  const std::string cmd = "timeout -s KILL " + std::to_string(limit_s) + " " + launcher(ranks) +
+                          std::string(COSIM_BINARY_DIR) + "/bin/fluid_solver " + scene + " --out " + out.string() +
+                          " --quiet --threads 1 " + extra + " > " + log.string() + " 2>&1";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int status = std::system(cmd.c_str());
+  RankRun r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.log = read_text(log);
+  return r;
+}
+
+inline nlohmann::json summary_of(const std::filesystem::path& out) {
+  return nlohmann::json::parse(read_text(out / "summary.json"));
+}
+
+// The snapshot files of a run, in order.
+inline std::vector<std::filesystem::path> snapshots_of(const std::filesystem::path& out) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("fluid_", 0) == 0 && e.path().extension() == ".h5") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// "" when the two series have the same files, times, fields and values bit for bit; else the first difference.
+inline std::string series_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const auto fa = snapshots_of(a), fb = snapshots_of(b);
+  if (fa.empty()) return "no snapshots in " + a.string();
+  if (fa.size() != fb.size())
+    return std::to_string(fa.size()) + " snapshots in " + a.string() + ", " + std::to_string(fb.size()) + " in " +
+           b.string();
+  for (std::size_t i = 0; i < fa.size(); ++i) {
+    const io::Hdf5File x(fa[i], io::Hdf5File::Mode::ReadOnly), y(fb[i], io::Hdf5File::Mode::ReadOnly);
+    if (x.read_double_attribute("/", "time") != y.read_double_attribute("/", "time"))
+      return fa[i].filename().string() + ": another time";
+    if (x.dataset_names() != y.dataset_names()) return fa[i].filename().string() + ": other fields";
+    for (const std::string& name : x.dataset_names()) {
+      const std::vector<double> u = x.read_doubles(name), v = y.read_doubles(name);
+      if (u.size() != v.size()) return fa[i].filename().string() + name + ": another size";
+      for (std::size_t c = 0; c < u.size(); ++c)
+        if (std::memcmp(&u[c], &v[c], sizeof(double)) != 0)
+          return fa[i].filename().string() + name + "[" + std::to_string(c) + "]: " + std::to_string(u[c]) + " vs " +
+                 std::to_string(v[c]);
+    }
+  }
+  return "";
+}
+
+}  // namespace cosim::test
