@@ -40,7 +40,8 @@ nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene&
 
 int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   const bool root = mpi.rank() == 0;
-  if (!root) spdlog::set_level(spdlog::level::warn);  // one voice for what every rank says alike
+  // One voice for what every rank finds alike (the scene, the set-up); afterwards a rank's own warnings and errors.
+  if (!root) spdlog::set_level(spdlog::level::off);
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
@@ -48,18 +49,28 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   std::unique_ptr<parallel::CartComm> comm;
   std::unique_ptr<CartBlockLinks> links;
   std::unique_ptr<FluidSimulation> sim;
-  try {
+  try {  // the layout: every rank finds the same
     const parallel::Layout layout = fluid_layout(scene, mpi.size());
     comm = std::make_unique<parallel::CartComm>(mpi, layout, periodic_axes(scene), scene.cells);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
+    return 2;
+  }
+  std::string setup_error;  // this rank's block (its memory, ...): the ranks agree before any exchange
+  try {
     assign_block(scene, *comm);
     scene.threads = threads_per_rank(scene, mpi);
     sim = make_simulation(scene);
     links = std::make_unique<CartBlockLinks>(*comm, scene);
     sim->set_block_links(links.get());
   } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
-    return 2;
+    setup_error = e.what();
   }
+  if (!root) spdlog::set_level(spdlog::level::warn);
+  if (!setup_error.empty())
+    spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
+                  opt.scene_name(), setup_error);
+  if (comm->any(!setup_error.empty())) return 2;
   if (root && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
     if (comm->size() == 1) return 4;
     parallel::MpiSession::abort_all(4);

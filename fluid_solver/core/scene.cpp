@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "common/checkpoint/checkpoint_sets.h"
+#include "common/parallel/launch_env.h"
 #include "common/config/output_times.h"
 #include "common/eos/materials.h"
 #include "fluid_solver/core/scene_readers.h"
@@ -409,20 +410,28 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
       s.parallel_ranks[d] = static_cast<int>(r[d]);
     }
     for (int d = s.dim; d < 3; ++d) s.parallel_ranks[d] = 1;
+    if (s.coupled && s.parallel_ranks[0] * s.parallel_ranks[1] * s.parallel_ranks[2] > 1)
+      par->fail("ranks", "one block in a coupled scene (the coupler serves one fluid process for now)");
     par->finish();
   }
   f.finish();
 
-  // Refused before anything is allocated: a state that cannot fit in the memory the machine has.
-  const double need = static_cast<double>(estimated_state_bytes(s));
+  // Refused before anything is allocated: a state that cannot fit in the memory the machine has (under a parallel
+  // launcher, the blocks of the ranks on this node: their share of the mesh).
+  const parallel::LaunchShape launch = parallel::launch_shape();
+  const double need = static_cast<double>(estimated_state_bytes(s)) * launch.ranks_on_node / launch.ranks;
   const std::size_t have = util::available_memory_bytes();
   if (have > 0 && need > 0.9 * static_cast<double>(have)) {
     double n = 1;
     for (int d = 0; d < s.dim; ++d) n *= s.cells[d];
     mesh.fail("cells",
               fmt::format("a mesh whose state fits in memory: {:.4g} cells need about {} ({:.0f} bytes per "
-                          "cell), this machine has {} available",
-                          n, util::format_bytes(need), need / n, util::format_bytes(static_cast<double>(have))));
+                          "cell){}, this machine has {} available",
+                          n, util::format_bytes(need), need / n * launch.ranks / launch.ranks_on_node,
+                          launch.ranks > 1 ? fmt::format(" for the blocks of this node's {} of {} ranks",
+                                                         launch.ranks_on_node, launch.ranks)
+                                           : std::string(),
+                          util::format_bytes(static_cast<double>(have))));
   }
   return s;
 }
