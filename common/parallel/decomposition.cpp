@@ -42,11 +42,11 @@ Layout choose_layout(int ranks, int dim, const Index3& cells, int min_cells) {
   if (ranks < 1) throw std::invalid_argument(fmt::format("{} ranks: at least 1 expected", ranks));
   std::optional<Layout> best;
   double best_area = 0;
-  // Every factorisation bx * by * bz = ranks (at most a few hundred even for 4096 ranks), in decreasing bx, by:
-  // the first of equal area found is the non-increasing one.
-  for (int bx = ranks; bx >= 1; --bx) {
+  // Every factorisation bx * by * bz = ranks (at most a few hundred even for 4096 ranks), in increasing bx, by:
+  // the first of equal area found splits the slow axes most.
+  for (int bx = 1; bx <= ranks; ++bx) {
     if (ranks % bx) continue;
-    for (int by = ranks / bx; by >= 1; --by) {
+    for (int by = 1; by <= ranks / bx; ++by) {
       if ((ranks / bx) % by) continue;
       const Layout l{{bx, by, ranks / bx / by}};
       if (layout_problem(l, ranks, dim, cells, min_cells)) continue;

@@ -6,6 +6,8 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
+
 #include "common/app/threads.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
@@ -28,12 +30,15 @@ int threads_per_rank(const FluidScene& scene, const parallel::MpiSession& mpi) {
   return std::max(1, std::min(cores, app::threads_for(rows, 16)));
 }
 
-nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene& scene, double halo_bytes) {
+// halo: the bytes every rank sent and the most seconds a rank spent in the exchanges (waiting included).
+nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene& scene, double halo_bytes,
+                               double halo_seconds) {
   const auto& b = comm.layout().blocks;
   return {{"ranks", comm.size()},
           {"layout", std::vector<int>(b.begin(), b.begin() + scene.dim)},
           {"threads_per_rank", omp_get_max_threads()},
-          {"halo_bytes", halo_bytes}};
+          {"halo_bytes", halo_bytes},
+          {"halo_seconds", halo_seconds}};
 }
 
 }  // namespace
@@ -66,7 +71,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   } catch (const std::exception& e) {
     setup_error = e.what();
   }
-  if (!root) spdlog::set_level(spdlog::level::warn);
+  if (!root) spdlog::set_level(spdlog::level::err);
   if (!setup_error.empty())
     spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
                   opt.scene_name(), setup_error);
@@ -97,7 +102,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                             scene.block.first[1] + scene.block.count[1], scene.block.first[2],
                             scene.block.first[2] + scene.block.count[2]);
     spdlog::error("{}: {}", mpi.describe(), rec.error);
-    rec.extra["parallel"] = parallel_record(*comm, scene, comm->halo_bytes());
+    rec.extra["parallel"] = parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds());
     rec.extra["parallel"]["failed_rank"] = comm->rank();
     try {
       write_summary(opt.out_dir, *sim, rec);  // this rank's totals only: the others cannot be asked
@@ -139,12 +144,18 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     checkpoint::write_manifest(dir, sim->steps(), sim->time(), m);
     checkpoint::prune(opt.checkpoints, scene.checkpoint.keep);
   };
+  double output_seconds = 0;
+  const auto timed = [&](auto&& write) {
+    const auto t0 = std::chrono::steady_clock::now();
+    write();
+    output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   const auto after_step = [&](double t_prev) {
     if (!scene.checkpoint.enabled() || !scene.checkpoint.due(sim->steps(), t_prev, sim->time())) return;
-    app::as_io("writing a checkpoint", [&] { write_checkpoint(); });
+    timed([&] { app::as_io("writing a checkpoint", [&] { write_checkpoint(); }); });
   };
   const app::DriveResult res = app::drive(
-      *sim, drive_opt, [&] { write_snapshot_over_blocks(series.get(), *sim, *comm); }, after_step);
+      *sim, drive_opt, [&] { timed([&] { write_snapshot_over_blocks(series.get(), *sim, *comm); }); }, after_step);
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
@@ -154,7 +165,8 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.wall = comm->max(rec.wall);
   std::vector<double> halo{comm->halo_bytes()};
   comm->sum(halo);
-  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0]);
+  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0], comm->max(comm->halo_seconds()));
+  rec.extra["output_seconds"] = comm->max(output_seconds);  // snapshots and checkpoints, within wall_time_s
   if (!root) return 0;
   try {
     write_summary(opt.out_dir, *sim, rec);

@@ -15,8 +15,9 @@ TEST(Decomposition, TheLayoutCutsTheLeastAreaAndOrdersTiesLikeMpiDimsCreate) {
   EXPECT_EQ(choose_layout(4, 2, {1000, 10, 1}, 3).blocks, (Index3{4, 1, 1}));  // a long tube: cuts across it
   EXPECT_EQ(choose_layout(4, 2, {10, 1000, 1}, 3).blocks, (Index3{1, 4, 1}));
   EXPECT_EQ(choose_layout(8, 3, {128, 128, 128}, 3).blocks, (Index3{2, 2, 2}));
-  EXPECT_EQ(choose_layout(6, 3, {100, 100, 100}, 3).blocks, (Index3{3, 2, 1}));
-  EXPECT_EQ(choose_layout(7, 2, {1000, 1000, 1}, 3).blocks, (Index3{7, 1, 1}));
+  EXPECT_EQ(choose_layout(6, 3, {100, 100, 100}, 3).blocks, (Index3{1, 2, 3}));  // ties: the slow axes split
+  EXPECT_EQ(choose_layout(7, 2, {1000, 1000, 1}, 3).blocks, (Index3{1, 7, 1}));
+  EXPECT_EQ(choose_layout(2, 3, {128, 128, 128}, 3).blocks, (Index3{1, 1, 2}));
   EXPECT_EQ(choose_layout(3, 1, {800, 1, 1}, 3).blocks, (Index3{3, 1, 1}));
   const Layout big = choose_layout(4096, 3, {1000, 1000, 1000}, 3);
   EXPECT_EQ(big.blocks, (Index3{16, 16, 16}));

@@ -99,6 +99,7 @@ CartComm::~CartComm() {
 
 void CartComm::exchange_ghosts(double* const* vars, int nvars, const PaddedBox& box, int d) {
   if (neighbour_[d][0] < 0 && neighbour_[d][1] < 0) return;
+  const auto t0 = std::chrono::steady_clock::now();
   const Index3 p = box.padded();
   const std::ptrdiff_t stride[3] = {1, p[0], static_cast<std::ptrdiff_t>(p[0]) * p[1]};
   // The range of the other axes: those before d over their ghost layers too, those after d their interior.
@@ -149,6 +150,7 @@ void CartComm::exchange_ghosts(double* const* vars, int nvars, const PaddedBox& 
     if (neighbour_[d][side] < 0) continue;
     visit(side == 0 ? 0 : ng + n, [&](double& x, std::size_t o) { x = recv_[side][o]; });  // its ghost layers
   }
+  halo_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 double CartComm::max(double local) const {

@@ -80,6 +80,7 @@ class CartComm {
   // Non-blocking sends and receives, waited for passively. Bytes moved so far: halo_bytes().
   void exchange_ghosts(double* const* vars, int nvars, const PaddedBox& box, int d);
   double halo_bytes() const { return halo_bytes_; }
+  double halo_seconds() const { return halo_seconds_; }  // spent in exchange_ghosts, packing and waiting included
 
   double max(double local) const;
   double min(double local) const;
@@ -101,7 +102,7 @@ class CartComm {
   std::array<std::array<int, 2>, 3> neighbour_{{{-1, -1}, {-1, -1}, {-1, -1}}};
   void* comm_ = nullptr;  // MPI_Comm of the Cartesian topology (MPI stays out of this header)
   std::vector<double> send_[2], recv_[2];
-  double halo_bytes_ = 0;
+  double halo_bytes_ = 0, halo_seconds_ = 0;
 };
 
 }  // namespace cosim::parallel
