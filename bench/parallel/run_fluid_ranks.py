@@ -4,7 +4,9 @@
 Runs build/bin/fluid_solver on the benchmark scenes of bench/fluid/ (2D 1000^2 and 3D 128^3, single phase and
 air/tungsten) as 1 rank x 1 thread, 1 rank x 2 threads and 2 ranks x 1 thread (mpirun), in alternation, `--repeats`
 rounds, and takes each configuration's best round. The rate counts the steps only (the summary's wall time less its
-output_seconds). Prints markdown tables, writes bench/results/fluid_ranks.png and fluid_ranks_model.png.
+output_seconds). Also 2 and 4 ranks on the machine's cores with passive and spinning waits, and the snapshot write
+rate (collective parallel HDF5) on 1, 2 and 4 ranks. Prints markdown tables, writes bench/results/fluid_ranks.png
+and fluid_ranks_model.png.
 
 Then a model of the tungsten scene at 1000^3 on 1 to 4096 ranks: computation per rank from the measured one-core
 rate of the 3D air/tungsten scene, the halo from the bytes the solver sends per step (two ghost layers of every
@@ -94,6 +96,38 @@ def oversubscription(quick, repeats):
     for ranks in (2, 4):
         print("| %d ranks x 1 thread | %.2f | %.2f |" % (ranks, best[(ranks, "passive")]["rate"] / 1e6,
                                                        best[(ranks, "spin")]["rate"] / 1e6))
+
+
+def snapshot_rate(repeats):
+    """Bytes per second of the snapshots of the 2D air/tungsten scene at 1000^2 on 1, 2 and 4 ranks."""
+    work = tempfile.mkdtemp(prefix="fluid_ranks_")
+    print("\n| snapshot of 2D air/tungsten 1000^2 | ranks | size | seconds | MB/s | against 1 rank |")
+    print("|---|---|---|---|---|---|")
+    base = None
+    try:
+        for ranks in (1, 2, 4):
+            best = None
+            for _ in range(repeats):
+                out = os.path.join(work, "run")
+                shutil.rmtree(out, ignore_errors=True)
+                cmd = ([] if ranks == 1 else MPIRUN + ["-np", str(ranks)]) + [
+                    BIN, os.path.join(ROOT, "bench/fluid/two_phase_2d.yaml"), "--out", out, "--quiet", "--threads",
+                    "1", "--set", "fluid.time.max_steps=1"]
+                subprocess.run(cmd, check=True, capture_output=True, text=True)
+                with open(os.path.join(out, "summary.json")) as f:
+                    s = json.load(f)
+                files = [os.path.join(out, n) for n in os.listdir(out) if n.startswith("fluid_") and n.endswith(".h5")]
+                size = sum(os.path.getsize(f) for f in files)
+                seconds = s["output_seconds"]
+                if best is None or seconds < best[1]:
+                    best = (size, seconds, len(files))
+            size, seconds, count = best
+            rate = size / seconds
+            base = base or rate
+            print("| %d snapshot(s) | %d | %.0f MB | %.2f | %.0f | %.2f |" % (count, ranks, size / 1e6, seconds,
+                                                                        rate / 1e6, rate / base))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
 
 
 def print_table(results):
@@ -188,6 +222,7 @@ def main():
     plot(results)
     scaling_model(results)
     oversubscription(a.quick, a.repeats)
+    snapshot_rate(a.repeats)
 
 
 if __name__ == "__main__":

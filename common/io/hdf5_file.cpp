@@ -172,10 +172,11 @@ std::string read_fixed_string(hid_t attr, hid_t file_type, const Site& site) {
 // before that. H5dont_atexit must come before any other HDF5 call: at load time.
 [[maybe_unused]] const herr_t kNoAtExit = H5dont_atexit();
 
-Hdf5File::Hdf5File(fs::path path, Mode mode) : path_(std::move(path)) {
+Hdf5File::Hdf5File(fs::path path, Mode mode, std::int64_t file_access) : path_(std::move(path)) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // we report errors ourselves
+  collective_ = file_access != 0;
   if (mode == Mode::Create) {
-    id_ = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    id_ = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, collective_ ? file_access : H5P_DEFAULT);
   } else {
     id_ = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   }
@@ -192,13 +193,15 @@ Hdf5File::~Hdf5File() {
   }
 }
 
-Hdf5File::Hdf5File(Hdf5File&& other) noexcept : path_(std::move(other.path_)), id_(std::exchange(other.id_, -1)) {}
+Hdf5File::Hdf5File(Hdf5File&& other) noexcept
+    : path_(std::move(other.path_)), id_(std::exchange(other.id_, -1)), collective_(other.collective_) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   if (this != &other) {
     if (id_ >= 0) H5Fclose(id_);
     path_ = std::move(other.path_);
     id_ = std::exchange(other.id_, -1);
+    collective_ = other.collective_;
   }
   return *this;
 }
@@ -239,6 +242,36 @@ bool Hdf5File::exists(const std::string& name) const {
     pos = end + 1;
   }
   return true;
+}
+
+void Hdf5File::write_dataset_part(const std::string& name, std::span<const double> data, const Hdf5Shape& shape,
+                                  const Hdf5Shape& offset, const Hdf5Shape& count) {
+  const hid_t file = checked_id("write a dataset");
+  const Site site = dataset_site(path_, name);
+  if (offset.size() != shape.size() || count.size() != shape.size()) site.invalid("offset and count need one entry per axis");
+  const std::vector<hsize_t> dims = checked_dims(shape, [&] {
+    std::uint64_t n = 1;
+    for (const std::uint64_t d : shape) n *= d;
+    return static_cast<std::size_t>(n);
+  }(), site);
+  const std::vector<hsize_t> part = checked_dims(count, data.size(), site);
+  const std::vector<hsize_t> start(offset.begin(), offset.end());
+  for (std::size_t d = 0; d < dims.size(); ++d)
+    if (start[d] + part[d] > dims[d]) site.invalid(fmt::format("part beyond the dataset along axis {}", d));
+  const Handle space =
+      site.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "create dataspace of");
+  const Handle dset = site.own(
+      H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+      "create");
+  const Handle mem =
+      site.own(H5Screate_simple(static_cast<int>(part.size()), part.data(), nullptr), H5Sclose, "create dataspace of");
+  site.check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, part.data(), nullptr),
+             "select the part of");
+  const Handle transfer = site.own(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "create the transfer list of");
+#ifdef H5_HAVE_PARALLEL
+  if (collective_) site.check(H5Pset_dxpl_mpio(transfer.get(), H5FD_MPIO_COLLECTIVE), "set collective writes of");
+#endif
+  site.check(H5Dwrite(dset.get(), H5T_NATIVE_DOUBLE, mem.get(), space.get(), transfer.get(), data.data()), "write");
 }
 
 void Hdf5File::write_dataset(const std::string& name, std::span<const double> data, const Hdf5Shape& shape) {

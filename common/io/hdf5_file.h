@@ -3,7 +3,7 @@
 //
 // Every failure throws std::runtime_error naming the file and the object, with HDF5's own most specific
 // message appended. HDF5's automatic error printing to stderr is switched off. Not thread-safe (neither is
-// Debian's serial HDF5 build).
+// Debian's HDF5 build, serial or OpenMPI).
 
 #include <cstdint>
 #include <filesystem>
@@ -21,7 +21,10 @@ class Hdf5File {
  public:
   enum class Mode { Create, ReadOnly };  // Create truncates an existing file
 
-  Hdf5File(std::filesystem::path path, Mode mode);
+  // file_access: 0, or an HDF5 file access property list of the parallel library (MPI-IO, made by
+  // parallel::collective_file_access): every rank of its communicator then opens the file together and makes every
+  // call below together, with the same arguments but for the part each writes (write_dataset_part).
+  Hdf5File(std::filesystem::path path, Mode mode, std::int64_t file_access = 0);
   ~Hdf5File();  // closes silently; call close() to see errors
   Hdf5File(Hdf5File&& other) noexcept;
   Hdf5File& operator=(Hdf5File&& other) noexcept;
@@ -40,6 +43,11 @@ class Hdf5File {
   void write_dataset(const std::string& name, std::span<const double> data, const Hdf5Shape& shape);
   void write_dataset(const std::string& name, std::span<const std::int64_t> data, const Hdf5Shape& shape);
   void write_dataset(const std::string& name, std::span<const std::uint8_t> data, const Hdf5Shape& shape);
+
+  // A dataset of `shape` of which this process writes the part [offset, offset + count) (data: that part,
+  // row-major); in a collective file every rank writes its part in one collective write.
+  void write_dataset_part(const std::string& name, std::span<const double> data, const Hdf5Shape& shape,
+                          const Hdf5Shape& offset, const Hdf5Shape& count);
 
   Hdf5Shape dataset_shape(const std::string& name) const;
   std::vector<std::string> dataset_names() const;  // every dataset in the file, as "/group/name", sorted
@@ -64,6 +72,7 @@ class Hdf5File {
 
   std::filesystem::path path_;
   std::int64_t id_ = -1;  // hid_t of the open file, -1 when closed
+  bool collective_ = false;
 };
 
 }  // namespace cosim::io

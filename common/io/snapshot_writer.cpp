@@ -111,23 +111,48 @@ std::vector<double> stored_values(const FieldView& f, std::uint64_t entities) {
   return out;
 }
 
+// The XDMF <Attribute> of a field dataset.
+std::string field_xml(const FieldView& f, Hdf5Shape xml_shape, const std::string& dataset, const std::string& h5_name) {
+  const int comps = stored_components(f.ncomp);
+  if (comps > 1) xml_shape.push_back(static_cast<std::uint64_t>(comps));
+  return fmt::format(
+      "        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n          {}\n        </Attribute>\n",
+      xml_escape(f.name), attribute_type(f.ncomp), f.center == Center::Cell ? "Cell" : "Node",
+      data_item(xml_shape, "Float", h5_name, dataset));
+}
+
 // Writes one field dataset and returns its XDMF <Attribute>.
 std::string write_field(Hdf5File& h5, const FieldView& f, const EntityShapes& shapes, const std::string& h5_name) {
   const bool cell = f.center == Center::Cell;
   Hdf5Shape shape = cell ? shapes.cells : shapes.nodes;
   const std::uint64_t entities = product(shape);
   const int comps = stored_components(f.ncomp);
-  Hdf5Shape xml_shape = cell && !shapes.xml_cells.empty() ? shapes.xml_cells : shape;
-  if (comps > 1) {
-    shape.push_back(static_cast<std::uint64_t>(comps));
-    xml_shape.push_back(static_cast<std::uint64_t>(comps));
-  }
+  const Hdf5Shape xml_shape = cell && !shapes.xml_cells.empty() ? shapes.xml_cells : shape;
+  if (comps > 1) shape.push_back(static_cast<std::uint64_t>(comps));
   const std::string dataset = fmt::format("/{}/{}", cell ? "cell" : "node", f.name);
   h5.write_dataset(dataset, stored_values(f, entities), shape);
-  return fmt::format(
-      "        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n          {}\n        </Attribute>\n",
-      xml_escape(f.name), attribute_type(f.ncomp), cell ? "Cell" : "Node",
-      data_item(xml_shape, "Float", h5_name, dataset));
+  return field_xml(f, xml_shape, dataset, h5_name);
+}
+
+// Writes this process's part of one cell field (a collective write in a shared file) and returns its XDMF.
+std::string write_field_part(Hdf5File& h5, const FieldView& f, const EntityShapes& shapes, const GridPart& part,
+                             int dim, const std::string& h5_name) {
+  Hdf5Shape shape = shapes.cells, offset, count;
+  for (int d = dim - 1; d >= 0; --d) {
+    offset.push_back(static_cast<std::uint64_t>(part.lower[d]));
+    count.push_back(static_cast<std::uint64_t>(part.upper[d] - part.lower[d]));
+  }
+  const int comps = stored_components(f.ncomp);
+  if (comps > 1) {
+    shape.push_back(static_cast<std::uint64_t>(comps));
+    offset.push_back(0);
+    count.push_back(static_cast<std::uint64_t>(comps));
+  }
+  const std::string dataset = "/cell/" + f.name;
+  std::uint64_t cells = 1;
+  for (int d = 0; d < dim; ++d) cells *= static_cast<std::uint64_t>(part.upper[d] - part.lower[d]);
+  h5.write_dataset_part(dataset, stored_values(f, cells), shape, offset, count);
+  return field_xml(f, shapes.xml_cells.empty() ? shapes.cells : shapes.xml_cells, dataset, h5_name);
 }
 
 std::string write_fields(Hdf5File& h5, const std::vector<FieldView>& fields, const EntityShapes& shapes,
@@ -393,6 +418,38 @@ fs::path SnapshotSeries::write(double time, std::int64_t step, const Unstructure
     body += write_fields(h5, fields, unstructured_shapes(g), name);
   });
   return publish(name, grid_element(fs::path(name).stem().string(), time, body));
+}
+
+fs::path SnapshotSeries::write_part(double time, std::int64_t step, const UniformGrid& g, const GridPart& part,
+                                    const std::vector<FieldView>& fields, CollectiveWrite& together) {
+  check_time(time);
+  check_fields(fields);
+  for (const FieldView& f : fields)
+    if (f.center != Center::Cell) reject(fmt::format("field '{}': a grid part holds cell fields only", f.name));
+  const UniformGrid grid = normalized(g);
+  if (together.leader()) prepare_directory();
+  together.barrier();  // an earlier run's files are gone before the new one is created
+  const std::string name = file_name(count());
+  const bool slab = slab_layout(grid, fields);
+  std::string body = uniform_grid_xml(grid, slab);
+  const fs::path target = dir_ / name, tmp = temp_path_for(target);
+  try {
+    Hdf5File h5(tmp, Hdf5File::Mode::Create, together.file_access());
+    write_root(h5, time, step);
+    write_uniform_grid(h5, grid);
+    const EntityShapes shapes = uniform_shapes(grid, slab);
+    for (const FieldView& f : fields) body += write_field_part(h5, f, shapes, part, grid.dim, name);
+    h5.close();
+    if (together.leader()) commit_file(tmp, target);
+  } catch (...) {
+    std::error_code ignored;
+    if (together.leader()) fs::remove(tmp, ignored);
+    throw;
+  }
+  const std::string grid_xml = grid_element(fs::path(name).stem().string(), time, body);
+  if (together.leader()) return publish(name, grid_xml);
+  grids_.push_back(grid_xml);  // the others keep the count and the entries alike
+  return target;
 }
 
 // Adds a complete snapshot to the .xmf; on failure the snapshot is dropped again.

@@ -75,6 +75,22 @@ struct UnstructuredGrid {
   int nodes_per_cell;
 };
 
+// The processes that write one snapshot file together (each its part of a uniform grid: MPI ranks, implemented in
+// common/parallel/mpi). Every process keeps its SnapshotSeries; the leader prepares the directory and publishes the
+// file and the index.
+class CollectiveWrite {
+ public:
+  virtual ~CollectiveWrite() = default;
+  virtual bool leader() const = 0;
+  virtual std::int64_t file_access() = 0;  // the shared file's HDF5 access property list (kept by the implementation)
+  virtual void barrier() = 0;
+};
+
+// A process's part of a uniform grid: cells [lower, upper) along x, y, z.
+struct GridPart {
+  std::array<int, 3> lower{0, 0, 0}, upper{1, 1, 1};
+};
+
 class SnapshotSeries {
  public:
   // dir must exist when write() is called (std::runtime_error naming the path otherwise). basename must be
@@ -90,6 +106,11 @@ class SnapshotSeries {
                               const std::vector<FieldView>& fields);
   std::filesystem::path write(double time, std::int64_t step, const UnstructuredGrid& g,
                               const std::vector<FieldView>& fields);
+  // The same snapshot as write(time, step, g, fields) of the whole grid, written by several processes together:
+  // `fields` hold this process's `part` of the grid (i fastest), every process calls it with the same time, step,
+  // grid and field names. The file is written under a temporary name and published by the leader, as write().
+  std::filesystem::path write_part(double time, std::int64_t step, const UniformGrid& g, const GridPart& part,
+                                   const std::vector<FieldView>& fields, CollectiveWrite& together);
 
   std::size_t count() const { return grids_.size(); }
   // The XDMF entries of the snapshots written so far, for a checkpoint; resume() takes them back: the series then
@@ -97,6 +118,12 @@ class SnapshotSeries {
   // lists the kept ones). resume() throws std::runtime_error naming a kept snapshot that is missing.
   const std::vector<std::string>& entries() const { return grids_; }
   void resume(std::vector<std::string> entries);
+  // What resume() records, without touching a file: for the processes that write a series with its leader
+  // (write_part), which resumes the files.
+  void follow(std::vector<std::string> entries) {
+    grids_ = std::move(entries);
+    resumed_ = true;
+  }
   std::filesystem::path xdmf_path() const;
 
  private:

@@ -88,8 +88,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                fmt::join(blocks.begin(), blocks.begin() + scene.dim, " x "), omp_get_max_threads());
 
   app::install_interrupt_handlers();
-  std::unique_ptr<io::SnapshotSeries> series;
-  if (root) series = std::make_unique<io::SnapshotSeries>(opt.out_dir, "fluid");
+  io::SnapshotSeries series(opt.out_dir, "fluid");  // every rank's (rank 0 publishes the files)
   RunRecord rec;
   rec.cells = cells;
   app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, 0.0, cells, "Mcell-updates/s",
@@ -113,7 +112,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   };
   if (!opt.restart.empty()) {
     try {
-      const FluidRunState restored = read_fluid_part_over_blocks(opt.restart, *sim, series.get(), *comm);
+      const FluidRunState restored = read_fluid_part_over_blocks(opt.restart, *sim, series, *comm);
       rec.start_totals = restored.start_totals;
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
@@ -125,8 +124,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
       return 2;
     }
     drive_opt.resumed = true;
-    drive_opt.outputs_done = root ? (series->count() > 0 ? series->count() - 1 : 0) : 0;
-    drive_opt.outputs_done = static_cast<std::size_t>(comm->max(static_cast<double>(drive_opt.outputs_done)));
+    drive_opt.outputs_done = series.count() > 0 ? series.count() - 1 : 0;
     spdlog::info("restarted from step {} at t = {:.9g} s ({})", sim->steps(), sim->time(), opt.restart.string());
   } else {
     rec.start_totals = totals_json(scene, totals_over_blocks(*sim, *comm));
@@ -137,7 +135,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     std::filesystem::path dir;
     if (root) dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
     const std::string part = write_fluid_part_over_blocks(
-        dir, *sim, series.get(), {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()}, *comm);
+        dir, *sim, series, {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()}, *comm);
     if (!root) return;
     nlohmann::json m = checkpoint::scene_record(opt.scene_file, opt.overrides);
     m["parts"] = {part};
@@ -155,7 +153,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     timed([&] { app::as_io("writing a checkpoint", [&] { write_checkpoint(); }); });
   };
   const app::DriveResult res = app::drive(
-      *sim, drive_opt, [&] { timed([&] { write_snapshot_over_blocks(series.get(), *sim, *comm); }); }, after_step);
+      *sim, drive_opt, [&] { timed([&] { write_snapshot_over_blocks(series, *sim, *comm); }); }, after_step);
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
@@ -176,7 +174,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   }
   if (res.code != 0) return res.code;
   spdlog::info("done: t = {:.6g} in {} steps, {:.2f} s wall, {} snapshot(s) in {}", sim->time(), sim->steps(), rec.wall,
-               series->count(), opt.out_dir.string());
+               series.count(), opt.out_dir.string());
   return 0;
 }
 

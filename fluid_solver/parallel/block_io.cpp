@@ -42,32 +42,28 @@ std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const pa
   return summed(sim.boundary_inflow(), comm);
 }
 
-void write_snapshot_over_blocks(io::SnapshotSeries* series, const FluidSimulation& sim,
+void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
                                 const parallel::CartComm& comm) {
-  if (comm.size() == 1) return write_snapshot(*series, sim);
+  if (comm.size() == 1) return write_snapshot(series, sim);  // with the embedded interface segments
   const FluidScene& s = sim.scene();
   const SnapshotFields fields(sim);
-  const std::size_t cells = sim.interior_cells();
-  std::vector<std::vector<double>> global;
-  std::vector<io::FieldView> views;
-  for (const io::FieldView& v : fields.views) {
-    global.push_back(
-        comm.gather_cells(std::span<const double>(v.data, cells * static_cast<std::size_t>(v.ncomp)), v.ncomp));
-    views.push_back({v.name, global.back().data(), v.ncomp, v.center});
-  }
-  if (comm.rank() != 0) return;
-  for (std::size_t i = 0; i < views.size(); ++i) views[i].data = global[i].data();  // after the vector settled
   io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
   for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
-  const std::size_t index = series->count();
-  const std::filesystem::path h5 = series->write(sim.time(), sim.steps(), g, views);
-  if (index == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
+  io::GridPart part;
+  for (int d = 0; d < 3; ++d) {
+    part.lower[d] = comm.block().lower[d];
+    part.upper[d] = comm.block().upper[d];
+  }
+  const std::size_t index = series.count();
+  const std::unique_ptr<io::CollectiveWrite> together = comm.collective_write();
+  const std::filesystem::path h5 = series.write_part(sim.time(), sim.steps(), g, part, fields.views, *together);
+  if (index == 0 && comm.rank() == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
 }
 
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
-                                         const io::SnapshotSeries* series, const FluidRunState& run,
+                                         const io::SnapshotSeries& series, const FluidRunState& run,
                                          const parallel::CartComm& comm) {
-  if (comm.size() == 1) return write_fluid_part(dir, sim, *series, run);
+  if (comm.size() == 1) return write_fluid_part(dir, sim, series, run);
   const std::vector<double> local = sim.conserved_cells();
   const std::size_t cells = sim.interior_cells();
   const int vars = sim.conserved_vars();
@@ -90,7 +86,7 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
     w.put_scalar("fluid.time", sim.time());
     w.put_integer("fluid.steps", sim.steps());
     w.put_integer("fluid.conserved_vars", vars);
-    checkpoint::put_series(w, "fluid", *series);
+    checkpoint::put_series(w, "fluid", series);
     w.put_text("run.start_totals", run.start_totals.dump());
     w.put_text("run.counters", run.counters.dump());
     w.commit();
@@ -99,8 +95,8 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
 }
 
 FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
-                                          io::SnapshotSeries* series, const parallel::CartComm& comm) {
-  if (comm.size() == 1) return read_fluid_part(set, sim, *series);
+                                          io::SnapshotSeries& series, const parallel::CartComm& comm) {
+  if (comm.size() == 1) return read_fluid_part(set, sim, series);
   // Rank 0 reads and checks the part; what it found (or why it failed) reaches every rank.
   const int vars = sim.conserved_vars();
   std::size_t global_cells = 1;
@@ -124,14 +120,16 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
               {"accounts", accounts},
               {"start_totals", r.text("run.start_totals")},
               {"counters", r.text("run.counters")}};
-      checkpoint::resume_series(r, "fluid", *series);
-      io::remove_numbered_files(series->xdmf_path().parent_path(), "fluid_interface_", ".csv", series->count());
+      checkpoint::resume_series(r, "fluid", series);
+      io::remove_numbered_files(series.xdmf_path().parent_path(), "fluid_interface_", ".csv", series.count());
+      head["series"] = series.entries();
     } catch (const std::exception& e) {
       head = {{"error", e.what()}};
     }
   }
   head = nlohmann::json::parse(comm.broadcast(head.dump()));
   if (head.contains("error")) throw std::runtime_error(head["error"].get<std::string>());
+  if (comm.rank() != 0) series.follow(head["series"].get<std::vector<std::string>>());
   std::vector<double> local;
   for (int v = 0; v < vars; ++v) {
     const std::span<const double> g =

@@ -1,6 +1,7 @@
-// A fluid run's outputs and accounts over the blocks of a split mesh: the global totals, one snapshot series (rank 0
-// writes the fields it gathers, so every reader sees one grid whatever the rank count) and checkpoint parts that
-// hold the global state, restorable on another rank count. With one block, these are the run's own values.
+// A fluid run's outputs and accounts over the blocks of a split mesh: the global totals, one snapshot series (every
+// rank writes its block into each snapshot file, collectively through parallel HDF5, so every reader sees one grid
+// whatever the rank count) and checkpoint parts that hold the global state, restorable on another rank count. With
+// one block, these are the run's own values.
 #pragma once
 
 #include <filesystem>
@@ -17,17 +18,17 @@ namespace cosim::fluid {
 std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 
-// The snapshot of the whole mesh: `series` is rank 0's (null elsewhere).
-void write_snapshot_over_blocks(io::SnapshotSeries* series, const FluidSimulation& sim,
+// The snapshot of the whole mesh; every rank keeps its `series` (rank 0's publishes the files).
+void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
                                 const parallel::CartComm& comm);
 
 // DIR/fluid.h5 with the global state, written by rank 0 (its file name on every rank). The entries are those of one
 // rank's part (FluidSimulation::save_state), so a set restarts on any rank count.
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
-                                         const io::SnapshotSeries* series, const FluidRunState& run,
+                                         const io::SnapshotSeries& series, const FluidRunState& run,
                                          const parallel::CartComm& comm);
 // Restores every rank's block from SET/fluid.h5 (verified and read by rank 0) and continues rank 0's series.
 FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
-                                          io::SnapshotSeries* series, const parallel::CartComm& comm);
+                                          io::SnapshotSeries& series, const parallel::CartComm& comm);
 
 }  // namespace cosim::fluid

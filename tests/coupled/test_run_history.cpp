@@ -47,8 +47,9 @@ TEST(RunHistory, RestartsAppendToTheLogsAndKeepEveryAttempt) {
     const std::string text = read_text(dir / log);
     EXPECT_EQ(count(text, "===== cosim restart at "), 1u) << log << ":\n" << text;
     EXPECT_NE(text.find("(attempt 2) ====="), std::string::npos) << text;
-    if (log != std::string("coupler.log"))  // --quiet: the coupler logs only warnings and errors
+    if (log != std::string("coupler.log")) {  // --quiet: the coupler logs only warnings and errors
       EXPECT_NE(text.find("restarted from cycle"), std::string::npos) << log << ":\n" << text;
+    }
   }
   EXPECT_EQ(read_text(dir / "fluid.log").rfind(first_fluid_log, 0), 0u) << "the first attempt's log was lost";
   nlohmann::json s = json_of(dir / "run_summary.json");

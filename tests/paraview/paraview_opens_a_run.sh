@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ParaView (Debian's paraview + python3-paraview, headless under xvfb-run) opens a coupled run's fluid, solid and
-# interface series with their arrays and time steps and renders the fluid. Skipped (exit 77) where ParaView is
-# absent. Usage: paraview_opens_a_run.sh BUILD_DIR
+# interface series with their arrays and time steps and renders the fluid, then a fluid run made by 2 MPI ranks as
+# one grid. Skipped (exit 77) where ParaView is absent. Usage: paraview_opens_a_run.sh BUILD_DIR
 set -euo pipefail
 build="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -11,14 +11,30 @@ if ! command -v pvbatch > /dev/null || ! command -v xvfb-run > /dev/null; then
 fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
+
+# pvbatch SCRIPT ARGS... under Xvfb with GLX and software GL, its output in $work/pvbatch.log; a display that is not
+# up yet ("bad X server connection") is tried again.
+pvbatch_headless() {
+  local rc=0
+  for attempt in 1 2 3 4 5; do
+    rc=0
+    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1024x768x24 +extension GLX" \
+      pvbatch "$@" > "$work/pvbatch.log" 2>&1 || rc=$?
+    grep -q "bad X server connection" "$work/pvbatch.log" || break
+    sleep 1
+  done
+  return "$rc"
+}
+
 "$build/bin/cosim" run "$here/../../configs/piston_2d.yaml" --out "$work/run" --quiet --set coupling.time.end=0.03
-# Xvfb with GLX and software GL; a display that is not up yet ("bad X server connection") is tried again.
-for attempt in 1 2 3 4 5; do
-  rc=0
-  LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1024x768x24 +extension GLX" \
-    pvbatch "$here/open_run.py" "$work/run" "$work/fluid.png" > "$work/pvbatch.log" 2>&1 || rc=$?
-  grep -q "bad X server connection" "$work/pvbatch.log" || break
-  sleep 1
-done
+rc=0
+pvbatch_headless "$here/open_run.py" "$work/run" "$work/fluid.png" || rc=$?
 grep -E "cells|picture|FAILED" "$work/pvbatch.log" || tail -20 "$work/pvbatch.log"
+[ "$rc" = 0 ] || exit "$rc"
+
+mpirun --allow-run-as-root --oversubscribe -np 2 "$build/bin/fluid_solver" "$here/../../configs/particle_blast_2d.yaml" \
+  --out "$work/ranks" --quiet --threads 1 --set 'fluid.mesh.cells=[40,30]' --set fluid.time.end=2.0e-4 \
+  --set fluid.output.interval=1.0e-4 > "$work/ranks.log" 2>&1 || { cat "$work/ranks.log"; exit 1; }
+pvbatch_headless "$here/open_ranks_run.py" "$work/ranks" 40 30 || rc=$?
+grep -E "cells|air_pressure|FAILED" "$work/pvbatch.log" || tail -20 "$work/pvbatch.log"
 exit "$rc"

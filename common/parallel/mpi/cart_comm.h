@@ -13,10 +13,12 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "common/io/snapshot_writer.h"
 #include "common/parallel/decomposition.h"
 
 namespace cosim::parallel {
@@ -93,6 +95,10 @@ class CartComm {
   std::vector<double> scatter_cells(std::span<const double> global, int ncomp) const;
   // Rank 0's bytes to every rank.
   std::string broadcast(const std::string& from_root) const;
+  void barrier() const;
+  // The ranks writing one snapshot file together (MPI-IO through parallel HDF5), rank 0 leading; without MPI, this
+  // process alone.
+  std::unique_ptr<io::CollectiveWrite> collective_write() const;
 
  private:
   Layout layout_;
