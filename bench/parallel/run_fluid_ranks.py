@@ -98,6 +98,32 @@ def oversubscription(quick, repeats):
                                                        best[(ranks, "spin")]["rate"] / 1e6))
 
 
+def halo_sweep(quick, repeats):
+    """The halo against the cells per rank: 2 ranks x 1 thread, each an N^2 (2D) or N^3 (3D) block, one phase."""
+    work = tempfile.mkdtemp(prefix="fluid_ranks_")
+    rows = []
+    try:
+        for dim, sizes, scene in ((2, (125, 250, 500), "bench/fluid/riemann_2d.yaml"),
+                                  (3, (32, 64), "bench/fluid/blast_3d.yaml")):
+            for n in sizes:
+                mesh = [n] * (dim - 1) + [2 * n]  # split across the slowest axis: two n^dim blocks
+                steps = 5 if quick else 20
+                best = None
+                for _ in range(repeats):
+                    r = run(scene, mesh, steps, 2, 1, work)
+                    if best is None or r["rate"] > best["rate"]:
+                        best = r
+                step_s = 2 * n ** dim / best["rate"]
+                rows.append((dim, n, best["halo_bytes_per_step"], best["halo_share"] * step_s, best["halo_share"]))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print("\n| block per rank (2 ranks x 1 thread, one phase) | halo bytes per step (both ranks) | halo time per step "
+          "| share of the step |")
+    print("|---|---|---|---|")
+    for dim, n, b, t, share in rows:
+        print("| %d^%d | %.0f kB | %.2f ms | %.1f%% |" % (n, dim, b / 1e3, 1e3 * t, 100 * share))
+
+
 def snapshot_rate(repeats):
     """Bytes per second of the snapshots of the 2D air/tungsten scene at 1000^2 on 1, 2 and 4 ranks."""
     work = tempfile.mkdtemp(prefix="fluid_ranks_")
@@ -222,6 +248,7 @@ def main():
     plot(results)
     scaling_model(results)
     oversubscription(a.quick, a.repeats)
+    halo_sweep(a.quick, a.repeats)
     snapshot_rate(a.repeats)
 
 
