@@ -3,13 +3,13 @@
 # installed build needs to run (the shared libraries and the Python packages: docker/Dockerfile's run stage).
 set -euo pipefail
 RUNTIME_PACKAGES=(
-  libstdc++6 libgomp1 libyaml-cpp0.7 libspdlog1.10 libfmt9 libhdf5-openmpi-103-1 libzmq5 libprotobuf32 libopenmpi3 openmpi-bin
+  libstdc++6 libgomp1 libyaml-cpp0.7 libspdlog1.10 libfmt9 libhdf5-openmpi-103-1 libzmq5 libprotobuf32 libopenmpi3 openmpi-bin libmetis5
   python3 python3-numpy python3-matplotlib python3-h5py python3-zmq python3-protobuf python3-yaml
 )
 PACKAGES=(
   g++ gfortran cmake ninja-build pkg-config
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libhdf5-openmpi-dev libeigen3-dev nlohmann-json3-dev
-  libgtest-dev libzmq3-dev libprotobuf-dev protobuf-compiler libopenmpi-dev openmpi-bin
+  libgtest-dev libzmq3-dev libprotobuf-dev protobuf-compiler libopenmpi-dev openmpi-bin libmetis-dev
   python3 python3-numpy python3-matplotlib python3-h5py python3-zmq python3-protobuf python3-yaml python3-pytest
 )
 [ "${1:-}" = "--runtime" ] && PACKAGES=("${RUNTIME_PACKAGES[@]}")
