@@ -31,6 +31,7 @@
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
 #include "launcher/process.h"
+#include "launcher/rank_launcher.h"
 #include "launcher/python_paths.h"
 #include "launcher/restart_check.h"
 #include "launcher/run_summary.h"
@@ -334,9 +335,12 @@ int run(const LaunchOptions& opt) {
   if (coupled)
     children.push_back(
         {"coupler", with_common(command(eff.coupler_cmd, "coupler"), "coupler", false), out / "coupler.log"});
-  if (plan->has_fluid())
-    children.push_back(
-        {"fluid", with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true), out / "fluid.log"});
+  if (plan->has_fluid()) {
+    std::vector<std::string> fluid = rank_launcher(eff.fluid_ranks);  // mpirun / srun before the program
+    const std::vector<std::string> program = with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true);
+    fluid.insert(fluid.end(), program.begin(), program.end());
+    children.push_back({"fluid", fluid, out / "fluid.log"});
+  }
   if (plan->has_solid())
     children.push_back(
         {"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});

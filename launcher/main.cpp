@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
   run->add_option("--fluid-exe", o.fluid_cmd, "fluid command (default: fluid_solver next to cosim)");
   run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
   run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
+  run->add_option("--fluid-ranks", o.fluid_ranks,
+                  "MPI ranks of the fluid (a fluid-only scene; default: the scene's launcher.fluid_ranks, else 1)")
+      ->check(CLI::PositiveNumber);
   run->add_flag("--quiet", o.quiet, "no progress line");
   run->add_option("--restart", o.restart,
                   "resume the run in this run directory from its newest complete checkpoint set (the scene may "

@@ -53,6 +53,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
       // Each key is read (and so known) even where the command line's --fluid-exe etc. override it.
       const std::string fluid = l->get<std::string>("fluid", ""), solid = l->get<std::string>("solid", ""),
                         coupler = l->get<std::string>("coupler", "");
+      const int ranks = l->get<int>("fluid_ranks", 0, config::int_at_least(1));
+      if (eff.fluid_ranks == 0) eff.fluid_ranks = ranks;
       if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(fluid);
       if (eff.solid_cmd.empty()) eff.solid_cmd = expand(solid);
       if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(coupler);
@@ -60,6 +62,14 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
     }
   } catch (const std::exception& e) {
     std::cerr << "cosim: " << e.what() << "\n";
+    return std::nullopt;
+  }
+  if (eff.fluid_ranks == 0) eff.fluid_ranks = 1;
+  if (eff.fluid_ranks > 1 && plan.kind != RunKind::FluidOnly) {
+    std::cerr << fmt::format(
+        "cosim: {} fluid ranks: a {} run has one fluid rank for now (the coupler serves one fluid process); "
+        "a fluid-only scene runs on several\n",
+        eff.fluid_ranks, kind_name(plan.kind));
     return std::nullopt;
   }
   for (const auto& [what, cmd] : {std::pair<const char*, const std::string&>{"the fluid command", eff.fluid_cmd},

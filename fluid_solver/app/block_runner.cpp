@@ -157,7 +157,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
-  if (res.code != 0 && comm->size() > 1) fail_alone(res.code, res.error);
+  if (res.code != 0 && comm->size() > 1) fail_alone(res.code, res.error.empty() ? res.status : res.error);
   rec.end_totals = totals_over_blocks(*sim, *comm);
   rec.inflow = inflow_over_blocks(*sim, *comm);
   rec.wall = comm->max(rec.wall);

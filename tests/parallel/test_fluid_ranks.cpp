@@ -215,3 +215,27 @@ TEST(FluidRanks, AKilledRankEndsTheRunWithinFiveSeconds) {
 }
 
 }  // namespace
+
+// cosim run --fluid-ranks N starts a fluid-only scene on N ranks (mpirun before fluid_solver in launch.json) with
+// the one-rank run's snapshots; a coupled scene is refused before anything starts.
+TEST(FluidRanks, CosimRunStartsTheFluidOnRanks) {
+  const std::string cosim = std::string(COSIM_BINARY_DIR) + "/bin/cosim";
+  if (!std::filesystem::exists(cosim)) GTEST_SKIP() << "cosim is not built (COSIM_BUILD_COUPLING off)";
+  const auto one = scratch_path("cosim_ranks_1"), two = scratch_path("cosim_ranks_2");
+  const std::string scene = scene_path("sod");
+  ASSERT_EQ(std::system((cosim + " run " + scene + " --quiet --out " + one.string() + " > /dev/null 2>&1").c_str()), 0);
+  const std::string cmd = cosim + " run " + scene + " --quiet --fluid-ranks 2 --out " + two.string() + " > " +
+                          two.string() + ".log 2>&1";
+  ASSERT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0) << cosim::test::read_text(two.string() + ".log");
+  EXPECT_EQ(series_difference(one / "fluid", two / "fluid"), "");
+  EXPECT_EQ(summary_of(two / "fluid")["parallel"]["ranks"].get<int>(), 2);
+  const nlohmann::json launch = nlohmann::json::parse(cosim::test::read_text(two / "launch.json"));
+  EXPECT_EQ(launch["commands"]["fluid"][0], "mpirun");
+  const auto refused = scratch_path("cosim_ranks_coupled");
+  const std::string coupled = cosim + " run " + scene_path("piston_2d") + " --quiet --fluid-ranks 2 --out " +
+                              refused.string() + " > " + refused.string() + ".log 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(coupled.c_str())), 2);
+  EXPECT_NE(cosim::test::read_text(refused.string() + ".log").find("a coupled run has one fluid rank for now"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(refused / "fluid"));
+}
