@@ -7,8 +7,11 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cstdlib>
 
 #include "common/app/threads.h"
+#include "common/io/atomic_file.h"
+#include "common/parallel/mpi/rank_watchdog.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "fluid_solver/app/run_summary.h"
@@ -87,6 +90,21 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                scene.dim, cells, scene.num_phases(), to_string(scene.flux), comm->size(),
                fmt::join(blocks.begin(), blocks.begin() + scene.dim, " x "), omp_get_max_threads());
 
+  // A rank that falls silent (stopped, hung) ends the run; the rank that notices says so in summary.json.
+  const double silence = std::getenv("COSIM_RANK_TIMEOUT") ? std::atof(std::getenv("COSIM_RANK_TIMEOUT")) : 3.0;
+  parallel::RankWatchdog watchdog(silence, [&, name = scene.name](const std::string& message, int silent, int code) {
+    spdlog::error("{}", message);
+    const nlohmann::json j{{"status", "failed"},
+                           {"error", message},
+                           {"scene", name},
+                           {"exit_code", code},
+                           {"parallel", {{"ranks", mpi.size()}, {"failed_rank", silent}, {"noticed_by", mpi.rank()}}}};
+    try {
+      io::write_file_atomically(opt.out_dir / "summary.json", j.dump(2) + "\n");
+    } catch (const std::exception& e) {
+      spdlog::error("cannot write summary.json: {}", e.what());
+    }
+  });
   app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "fluid");  // every rank's (rank 0 publishes the files)
   RunRecord rec;

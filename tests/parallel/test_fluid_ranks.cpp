@@ -216,6 +216,37 @@ TEST(FluidRanks, AKilledRankEndsTheRunWithinFiveSeconds) {
 
 }  // namespace
 
+// SIGSTOP of one rank (silent, not dead: mpirun does not notice): the rank watchdog of another rank does, within
+// 5 s; code 5, the silent rank named in summary.json, no rank left behind.
+TEST(FluidRanks, AStoppedRankEndsTheRunWithinFiveSeconds) {
+  const auto out = scratch_path("stopped");
+  std::chrono::steady_clock::time_point stopped_at;
+  std::thread stopper([&] {
+    for (int i = 0; i < 200; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (std::filesystem::exists(out / "fluid_000000.h5")) break;
+    }
+    stopped_at = std::chrono::steady_clock::now();
+    const std::string cmd = "pkill -STOP -n -f 'fluid_solve[r] .*--out " + out.string() + " '";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+  });
+  const RankRun r = run_fluid_ranks(2, scene_path("gresho_vortex"), out,
+                                    "--set fluid.mesh.cells=[200,200] --set fluid.output.interval=0.01", 120);
+  const auto ended = std::chrono::steady_clock::now();
+  stopper.join();
+  const double after_stop = std::chrono::duration<double>(ended - stopped_at).count();
+  EXPECT_EQ(r.code, 5) << r.log;
+  EXPECT_LT(after_stop, 5.0) << r.log;
+  EXPECT_NE(r.log.find("has been silent for"), std::string::npos) << r.log;
+  const nlohmann::json s = summary_of(out);
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_EQ(s["parallel"]["failed_rank"].get<int>(), 1);
+  EXPECT_NE(std::system(("pgrep -f 'fluid_solve[r] .*--out " + out.string() + " ' > /dev/null").c_str()), 0)
+      << "a rank was left behind";
+  std::printf("[ measured ] one of 2 ranks stopped (SIGSTOP): the run ended with code %d %.2f s after the stop\n",
+              r.code, after_stop);
+}
+
 // cosim run --fluid-ranks N starts a fluid-only scene on N ranks (mpirun before fluid_solver in launch.json) with
 // the one-rank run's snapshots; a coupled scene is refused before anything starts.
 TEST(FluidRanks, CosimRunStartsTheFluidOnRanks) {

@@ -59,7 +59,8 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   // right; docs/parallel.md). OpenMPI reads its MCA parameters from the environment when MPI starts.
   setenv("OMPI_MCA_io", "romio321", 0);
   int provided = 0;
-  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);  // MPI from the master thread only
+  // The computation calls MPI from its master thread; the rank watchdog's thread (rank_watchdog.h) beside it.
+  MPI_Init_thread(argc, argv, MPI_THREAD_MULTIPLE, &provided);
   active_ = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
