@@ -55,6 +55,7 @@ def run(scene, mesh, steps, ranks, threads, work, env=None):
     stepping = s["wall_time_s"] - s.get("output_seconds", 0.0)
     cells = math.prod(mesh)
     return {"rate": cells * s["steps"] / stepping, "halo_share": s["parallel"]["halo_seconds"] / stepping,
+            "wait_share": s["parallel"].get("halo_wait_seconds", 0.0) / stepping,
             "halo_bytes_per_step": s["parallel"]["halo_bytes"] / s["steps"], "steps": s["steps"]}
 
 
@@ -114,14 +115,15 @@ def halo_sweep(quick, repeats):
                     if best is None or r["rate"] > best["rate"]:
                         best = r
                 step_s = 2 * n ** dim / best["rate"]
-                rows.append((dim, n, best["halo_bytes_per_step"], best["halo_share"] * step_s, best["halo_share"]))
+                rows.append((dim, n, best["halo_bytes_per_step"], best["halo_share"] * step_s, best["halo_share"],
+                             best["wait_share"]))
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print("\n| block per rank (2 ranks x 1 thread, one phase) | halo bytes per step (both ranks) | halo time per step "
-          "| share of the step |")
-    print("|---|---|---|---|")
-    for dim, n, b, t, share in rows:
-        print("| %d^%d | %.0f kB | %.2f ms | %.1f%% |" % (n, dim, b / 1e3, 1e3 * t, 100 * share))
+          "| share of the step | of it waiting |")
+    print("|---|---|---|---|---|")
+    for dim, n, b, t, share, wait in rows:
+        print("| %d^%d | %.0f kB | %.2f ms | %.1f%% | %.1f%% |" % (n, dim, b / 1e3, 1e3 * t, 100 * share, 100 * wait))
 
 
 def snapshot_rate(repeats):

@@ -33,15 +33,17 @@ int threads_per_rank(const FluidScene& scene, const parallel::MpiSession& mpi) {
   return std::max(1, std::min(cores, app::threads_for(rows, 16)));
 }
 
-// halo: the bytes every rank sent and the most seconds a rank spent in the exchanges (waiting included).
+// halo: the bytes every rank sent and the most seconds a rank spent in the exchanges, waiting included, and of it
+// waiting for the neighbours' messages (their latency and the ranks' imbalance).
 nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene& scene, double halo_bytes,
-                               double halo_seconds) {
+                               double halo_seconds, double halo_wait_seconds) {
   const auto& b = comm.layout().blocks;
   return {{"ranks", comm.size()},
           {"layout", std::vector<int>(b.begin(), b.begin() + scene.dim)},
           {"threads_per_rank", omp_get_max_threads()},
           {"halo_bytes", halo_bytes},
-          {"halo_seconds", halo_seconds}};
+          {"halo_seconds", halo_seconds},
+          {"halo_wait_seconds", halo_wait_seconds}};
 }
 
 }  // namespace
@@ -119,7 +121,8 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                             scene.block.first[1] + scene.block.count[1], scene.block.first[2],
                             scene.block.first[2] + scene.block.count[2]);
     spdlog::error("{}: {}", mpi.describe(), rec.error);
-    rec.extra["parallel"] = parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds());
+    rec.extra["parallel"] =
+        parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds(), comm->halo_wait_seconds());
     rec.extra["parallel"]["failed_rank"] = comm->rank();
     try {
       write_summary(opt.out_dir, *sim, rec);  // this rank's totals only: the others cannot be asked
@@ -181,7 +184,8 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.wall = comm->max(rec.wall);
   std::vector<double> halo{comm->halo_bytes()};
   comm->sum(halo);
-  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0], comm->max(comm->halo_seconds()));
+  const double halo_s = comm->max(comm->halo_seconds()), wait_s = comm->max(comm->halo_wait_seconds());
+  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0], halo_s, wait_s);
   rec.extra["output_seconds"] = comm->max(output_seconds);  // snapshots and checkpoints, within wall_time_s
   if (!root) return 0;
   try {

@@ -160,7 +160,9 @@ void CartComm::exchange_ghosts(double* const* vars, int nvars, const PaddedBox& 
               as_comm(comm_), &req[nreq++]);
     halo_bytes_ += 8.0 * static_cast<double>(count);
   }
+  const auto w0 = std::chrono::steady_clock::now();
   wait_passively(nreq, req);
+  halo_wait_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   for (int side = 0; side < 2; ++side) {
     if (neighbour_[d][side] < 0) continue;
     visit(side == 0 ? 0 : ng + n, [&](double& x, std::size_t o) { x = recv_[side][o]; });  // its ghost layers

@@ -83,6 +83,7 @@ class CartComm {
   void exchange_ghosts(double* const* vars, int nvars, const PaddedBox& box, int d);
   double halo_bytes() const { return halo_bytes_; }
   double halo_seconds() const { return halo_seconds_; }  // spent in exchange_ghosts, packing and waiting included
+  double halo_wait_seconds() const { return halo_wait_seconds_; }  // of which waiting for the messages
 
   double max(double local) const;
   double min(double local) const;
@@ -108,7 +109,7 @@ class CartComm {
   std::array<std::array<int, 2>, 3> neighbour_{{{-1, -1}, {-1, -1}, {-1, -1}}};
   void* comm_ = nullptr;  // MPI_Comm of the Cartesian topology (MPI stays out of this header)
   std::vector<double> send_[2], recv_[2];
-  double halo_bytes_ = 0, halo_seconds_ = 0;
+  double halo_bytes_ = 0, halo_seconds_ = 0, halo_wait_seconds_ = 0;
 };
 
 }  // namespace cosim::parallel
