@@ -6,12 +6,12 @@
 # Usage: paraview_shows_a_run.sh BUILD_DIR
 set -euo pipefail
 build="$1"
-here="$(cd "$(dirname "$0")" && pwd)"
-configs="$here/../../configs"
 if ! command -v pvbatch > /dev/null || ! command -v xvfb-run > /dev/null; then
   echo "skipped: ParaView is not installed (apt-get install paraview python3-paraview xvfb)"
   exit 77
 fi
+here="$(cd "$(dirname "$0")" && pwd)"
+configs="$here/../../configs"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
