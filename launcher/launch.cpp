@@ -35,6 +35,7 @@
 #include "launcher/python_paths.h"
 #include "launcher/restart_check.h"
 #include "launcher/run_summary.h"
+#include "launcher/run_view.h"
 #include "launcher/scene_check.h"
 #include "launcher/scene_plan.h"
 #include "launcher/watcher.h"
@@ -384,8 +385,15 @@ int run(const LaunchOptions& opt) {
 
   const auto stop_children = [&] { stop_all(children, 3.0); };
   const double launch_time = now_s();
+  bool viewed = false;  // RUN/view.py written at the end
   const auto summarise = [&](const std::string& status, const std::string& reason, const Child* failed) {
     if (status != "completed" && status != "running") remove_empty_outputs(out, children);
+    // A failed or interrupted run's snapshots are worth a look too; a run without any gets no view.
+    if (status != "running") {
+      const std::string why = write_run_view(out);
+      viewed = why.empty();
+      if (!viewed && status == "completed") std::cerr << "cosim: no view.py (ParaView state): " << why << "\n";
+    }
     write_run_summary(out, {status, reason, failed, now_s() - launch_time}, children, coupled, attempt);
   };
   Watcher watcher;  // says so in run_summary.json if this launcher dies
@@ -467,8 +475,8 @@ int run(const LaunchOptions& opt) {
   }
   summarise("completed", "all processes completed", nullptr);
   if (!opt.quiet)
-    std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}\n", now_s() - start_time,
-                             out.string());
+    std::cerr << fmt::format("cosim: completed in {:.1f} s; logs and results in {}{}\n", now_s() - start_time,
+                             out.string(), viewed ? fmt::format("; in ParaView: cosim view {}", out.string()) : "");
   return 0;
 }
 

@@ -1,7 +1,8 @@
 // `cosim run`: one scene, three processes (or the fluid alone when the scene has no solid: section, the solid alone
 // when it has no fluid: section).
 // Run directory layout: scene.yaml (the copy every process reads), launch.json (commands and endpoint),
-// coupler.log / fluid.log / solid.log, and the processes' outputs in coupler/, fluid/, solid/, and run_summary.json.
+// coupler.log / fluid.log / solid.log, and the processes' outputs in coupler/, fluid/, solid/, run_summary.json and
+// view.py (the run's ParaView state, run_view.h).
 // A run that cannot start leaves no directory it made; one that fails keeps no empty output folder.
 #pragma once
 

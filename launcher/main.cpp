@@ -1,5 +1,7 @@
 // cosim run SCENE.yaml [--out DIR] [--set key=value ...] [--tcp [HOST]] [--fluid-exe CMD] [--solid-exe CMD]
 //                      [--coupler-exe CMD] [--quiet]
+// cosim check SCENE.yaml [--set key=value ...]
+// cosim view RUN_DIR [--write]
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
@@ -10,6 +12,7 @@
 #include "common/app/cli_suggest.h"
 #include "common/app/version.h"
 #include "launcher/launch.h"
+#include "launcher/view_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"cosim: runs a scene's fluid solver, solid solver and coupler"};
@@ -49,11 +52,24 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  cosim check configs/shock_panel_2d.yaml           every section as its program reads it; exit 0 or 2\n"
       "  cosim check configs/piston_2d.yaml --set coupling.time.end=1e-3");
+  auto* view = app.add_subcommand("view", "open a run in ParaView with its state RUN/view.py");
+  std::string view_dir;
+  bool view_write = false;
+  view->add_option("run", view_dir, "run directory")->required();
+  view->add_flag("--write", view_write, "write RUN/view.py anew (from the run as it is now) and open nothing");
+  view->footer(
+      "Runs paraview --state=RUN/view.py: the fluid coloured by pressure (a 3D fluid on its mid-plane), the solid\n"
+      "by von Mises stress, the interface faces, at the last time step. Without a display:\n"
+      "  COSIM_VIEW_SCREENSHOT=view.png pvbatch RUN/view.py   a picture of it\n"
+      "Examples:\n"
+      "  cosim view runs/piston_2d\n"
+      "  cosim view runs/piston_2d --write                 view.py written again, nothing opened");
   app.footer(
       "Examples:\n"
       "  cosim run configs/piston_2d.yaml                  coupled run into runs/<scene name>\n"
       "  cosim run configs/sod.yaml --out runs/sod_800 --set 'fluid.mesh.cells=[800]'\n"
       "  cosim check configs/piston_2d.yaml                the scene checked, nothing run\n"
+      "  cosim view runs/piston_2d                         the run in ParaView\n"
       "  cosim run --help                                  the options of a run");
   run->footer(
       "Examples:\n"
@@ -70,7 +86,8 @@ int main(int argc, char** argv) {
     unknown = "a command is required: cosim run SCENE.yaml [options] (cosim --help for more)";
   } else if (argv[1][0] != '-') {
     unknown = cosim::app::unknown_subcommand(app, argv[1]);
-    if (unknown.empty()) unknown = cosim::app::unknown_option(*run, argc, argv, 2);
+    if (unknown.empty())
+      unknown = cosim::app::unknown_option(argv[1] == std::string("view") ? *view : *run, argc, argv, 2);
   } else if (const std::string w = std::string(argv[1]).substr(0, std::string(argv[1]).find('='));
              w != "--version" && w != "--help" && w != "-h") {
     // an option before the command (cosim has none but --help and --version): named with run's closest
@@ -88,6 +105,7 @@ int main(int argc, char** argv) {
   std::error_code ec;
   auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   const std::filesystem::path bin_dir = ec ? std::filesystem::path(argv[0]).parent_path() : self.parent_path();
+  if (view->parsed()) return cosim::launcher::view(view_dir, view_write);
   if (chk->parsed()) {
     co.bin_dir = bin_dir;
     return cosim::launcher::check(co);

@@ -108,7 +108,7 @@ TEST(CouplingLauncher, UnknownCommandsAndOptionsAreNamedWithASuggestionAndVersio
   };
   auto [rc, log] = run_exe(bin("cosim").string() + " frobnicate x.yaml");
   EXPECT_EQ(rc, 2);
-  EXPECT_NE(log.find("cosim: unknown command 'frobnicate' (commands: check, run)"), std::string::npos) << log;
+  EXPECT_NE(log.find("cosim: unknown command 'frobnicate' (commands: check, run, view)"), std::string::npos) << log;
   std::tie(rc, log) = run_exe(bin("cosim").string() + " rn x.yaml");
   EXPECT_NE(log.find("unknown command 'rn' (did you mean 'run'?)"), std::string::npos) << log;
   std::tie(rc, log) = run_exe(bin("cosim").string() + " run x.yaml --output y");
