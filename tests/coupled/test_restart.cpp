@@ -24,7 +24,8 @@ std::vector<cosim::checkpoint::SetInfo> sets_of(const fs::path& run) {
 
 // Every row of the run's timing.csv accounts its wall time: no cycle after the first, the ones with snapshots and
 // checkpoints included, shows more solver, output and coupler work than wall time (negative communication) beyond
-// 1 ms of clock granularity and scheduling (before outputs had their column: down to -11 ms after each snapshot).
+// 2 ms of clock granularity and scheduling (before outputs had their column: down to -11 ms after each snapshot; a
+// fresh-clone run beside other builds, load average about 5, showed -1.06 ms in one cycle of the tungsten restart).
 // The first cycle holds the solvers' set-up, whose start the coupler knows only as the moment it read their Hello
 // (up to a poll interval late: -1.5 ms seen with the Python piston), so it is left out.
 void expect_timing_accounts_the_wall(const fs::path& run) {
@@ -45,7 +46,7 @@ void expect_timing_accounts_the_wall(const fs::path& run) {
   }
   std::printf("%s: %ld timing rows, least communication %.3g s (cycle %ld)\n", run.filename().c_str(), rows, worst,
               worst_cycle);
-  EXPECT_GT(worst, -1e-3) << "cycle " << worst_cycle;
+  EXPECT_GT(worst, -2e-3) << "cycle " << worst_cycle;
 }
 
 // Runs `scene` to its end with checkpoints (`args`), then resumes a copy of the run from its first complete set and
