@@ -75,15 +75,18 @@ inline void Solver<DIM, NP, FK>::mirror_edge(const WallFace& wf, const double* f
       uIn += wf.wall_velocity[d] * wf.normal[d];
     }
     double ustar = uIn;
-    if (wall_second_order_) {  // eqs. 23, 25, 26 with the minmod limiter
-      double u1 = 0, u2 = 0;
-      for (int d = 0; d < DIM; ++d) {
-        u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
-        u2 += W_.var(Lay::vel(k, d))[wf.fluid_cell2] * wf.normal[d];
-      }
-      const double s = (uIn - u1) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u2);
-      const double s2 = u1 - u2;
-      const double lim = s * s2 > 0.0 ? (std::abs(s) < std::abs(s2) ? s : s2) : 0.0;
+    if (wall_second_order_) {  // eqs. 23, 25, 26, the slope limited by minmod (docs/methods.md §5.5)
+      const std::size_t cells[4] = {wf.fluid_cell, wf.fluid_cell2, wf.fluid_cell3, wf.fluid_cell4};
+      double u[4] = {0, 0, 0, 0};  // u_1 .. u_4, normal components
+      for (int j = 0; j < 4; ++j)
+        for (int d = 0; d < DIM; ++d) u[j] += W_.var(Lay::vel(k, d))[cells[j]] * wf.normal[d];
+      // Eq. 25's slope, limited against u_1 - u_2 (the paper's s2), u_2 - u_3 and 2 (u_3 - u_4): a shock that
+      // MUSCL spreads over the three cells next to the wall gives slopes of one sign that the paper's pair does
+      // not limit, and its half-cell extrapolation drove the wall into the gas (docs/deformable_structures.md);
+      // the last difference, past such a shock, is doubled so that a smooth profile's curvature does not clip it.
+      double lim = (uIn - u[0]) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u[1]);
+      for (int j = 0; j < 2; ++j) lim = limited_slope<Limiter::Minmod>(lim, u[j] - u[j + 1]);
+      lim = limited_slope<Limiter::Minmod>(lim, 2.0 * (u[2] - u[3]));  // doubled, as in the MC limiter
       ustar = uIn + (0.5 - wf.d) * lim;
     }
     for (int d = 0; d < DIM; ++d) to[Lay::vel(k, d) * len_e] -= 2.0 * (un - ustar) * wf.normal[d];
