@@ -37,6 +37,8 @@ struct GhostRecord {
 struct WallFace {
   std::size_t fluid_cell = 0;             // cell 1 of the paper's Fig. 4
   std::size_t fluid_cell2 = 0;            // cell 2: the next flow cell away from the wall (== fluid_cell if none)
+  std::size_t fluid_cell3 = 0;            // cells 3 and 4 beyond it, for the shock test of the wall velocity
+  std::size_t fluid_cell4 = 0;            // extrapolation (each == the one before if none)
   std::size_t solid_cell = 0;             // cell 0: ghost or solid-cut
   bool solid_on_high_side = true;         // the solid cell is at +e_D of the fluid cell
   std::array<double, 3> normal{0, 0, 0};  // interface normal n_I (solid -> fluid)

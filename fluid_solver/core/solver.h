@@ -511,6 +511,10 @@ class Solver final : public FluidSimulation {
   void mirror_wall_faces(std::size_t base, int len, double* left_edges, int left_off, double* right_edges,
                          int right_off) const;
   void mirror_edge(const WallFace& wf, const double* from, double* to) const;
+  // Eq. 25's extrapolation applies unless the gas converges over the four cells next to a wall face and their
+  // pressures differ by more than this fraction of p + p_inf (a shock; solver_embedded_faces.h, methods.md §5.5).
+  static constexpr double kWallSmoothPressureSpread = 0.2;
+  bool smooth_next_to_wall(const WallFace& wf, int k) const;
   template <int D, ReconMode RM>
   void blocked_face_fluxes(bool high_side, std::size_t base, int len, const double* left_edges, int left_off,
                            const double* right_edges, int right_off, double* mini, double* face1, double* buf,

@@ -61,6 +61,34 @@ inline void Solver<DIM, NP, FK>::mirror_wall_faces(std::size_t base, int len, do
   }
 }
 
+// Whether phase k's flow over the four cells next to wall face wf (cells 1 to 4 of wall_faces.h, along the
+// face's grid line away from the wall) is smooth enough for eq. 25's extrapolation of the wall velocity
+// (docs/methods.md §5.5). Eq. 25 is a Taylor expansion from cells 1 and 2 to the face; a shock in these cells
+// (MUSCL spreads it over about three) gives slopes the paper's minmod(s, s2) does not limit, and where d is small
+// the half-cell extrapolation of the jump moves the face into the gas (the 9.5 panel at 50^2: 37% too much
+// velocity, docs/deformable_structures.md). Not smooth: the gas converges between cells 4 and 1 (u_1 > u_4 along
+// the normal; a shock, arriving or leaving, always compresses) and their pressures differ by more than
+// kWallSmoothPressureSpread of p + p_inf (20%: the jump of a Mach 1.08 shock at gamma 1.4). There the face takes
+// the wall's velocity (first order). Expansions never steepen into shocks and keep eq. 25 however steep (a
+// receding wall's rarefaction spans more than 20% over four cells at 40 cells, EmbeddedSmoothPiston.*).
+template <int DIM, int NP, FluxKind FK>
+inline bool Solver<DIM, NP, FK>::smooth_next_to_wall(const WallFace& wf, int k) const {
+  double u1 = 0, u4 = 0;
+  for (int d = 0; d < DIM; ++d) {
+    u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
+    u4 += W_.var(Lay::vel(k, d))[wf.fluid_cell4] * wf.normal[d];
+  }
+  if (u1 <= u4) return true;
+  const double* p = W_.var(Lay::pres(k));
+  const double pinf = eos_[k].pinf;
+  double lo = p[wf.fluid_cell] + pinf, hi = lo;
+  for (std::size_t c : {wf.fluid_cell2, wf.fluid_cell3, wf.fluid_cell4}) {
+    lo = std::min(lo, p[c] + pinf);
+    hi = std::max(hi, p[c] + pinf);
+  }
+  return hi - lo <= kWallSmoothPressureSpread * lo;
+}
+
 // The mirror of the flow-side edge state `from` about the interface of wall face wf into `to` (both with the
 // edge rows' variable stride): (alpha, rho, u - 2 ((u - u*).n) n, p) per phase, u*.n the interface
 // velocity or its d-weighted extrapolation to the face (eqs. 23-26).
@@ -75,16 +103,14 @@ inline void Solver<DIM, NP, FK>::mirror_edge(const WallFace& wf, const double* f
       uIn += wf.wall_velocity[d] * wf.normal[d];
     }
     double ustar = uIn;
-    if (wall_second_order_) {  // eqs. 23, 25, 26 with the minmod limiter
+    if (wall_second_order_ && smooth_next_to_wall(wf, k)) {  // eqs. 23, 25, 26 with the paper's minmod
       double u1 = 0, u2 = 0;
       for (int d = 0; d < DIM; ++d) {
         u1 += W_.var(Lay::vel(k, d))[wf.fluid_cell] * wf.normal[d];
         u2 += W_.var(Lay::vel(k, d))[wf.fluid_cell2] * wf.normal[d];
       }
       const double s = (uIn - u1) + (1.0 - wf.d) / (1.0 + wf.d) * (uIn - u2);
-      const double s2 = u1 - u2;
-      const double lim = s * s2 > 0.0 ? (std::abs(s) < std::abs(s2) ? s : s2) : 0.0;
-      ustar = uIn + (0.5 - wf.d) * lim;
+      ustar = uIn + (0.5 - wf.d) * limited_slope<Limiter::Minmod>(s, u1 - u2);
     }
     for (int d = 0; d < DIM; ++d) to[Lay::vel(k, d) * len_e] -= 2.0 * (un - ustar) * wf.normal[d];
   }

@@ -13,6 +13,24 @@
 
 namespace cosim::fluid {
 
+// Cells 2, 3 and 4 of wall face f along D, counted from its flow cell away from the wall (cell 1): each the next
+// flow cell of the padded row, or the one before it where there is none.
+template <int DIM>
+void set_cells_away(const Grid<DIM>& g, const EmbeddedState& e, int D, WallFace& f) {
+  const std::ptrdiff_t s = g.stride[D];
+  const std::ptrdiff_t step = f.solid_on_high_side ? -s : s;
+  std::ptrdiff_t pos = static_cast<std::ptrdiff_t>(f.fluid_cell) / s % g.padded[D];  // along D in the padded row
+  std::size_t* away[3] = {&f.fluid_cell2, &f.fluid_cell3, &f.fluid_cell4};
+  std::size_t c = f.fluid_cell;
+  for (std::size_t* a : away) {
+    pos += step > 0 ? 1 : -1;
+    const std::size_t n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(c) + step);
+    if (pos >= 0 && pos < g.padded[D] && is_flow_cell(e.kind[n])) c = n;
+    else pos = -2 * g.padded[D];  // none: the rest repeat the last flow cell
+    *a = c;
+  }
+}
+
 // phi: signed distance at every padded cell centre (> 0 in the fluid). The interface point I lies
 // on the line between the two centres where phi changes sign (linear interpolation); d is its
 // distance from the flow cell's centre in cells. The normal and wall velocity at the face are
@@ -31,9 +49,8 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
         WallFace f;
         f.solid_cell = c;
         f.fluid_cell = n;
-        const std::size_t n2 = side == 0 ? n - s : n + s;
-        f.fluid_cell2 = n2 < g.total && is_flow_cell(e.kind[n2]) ? n2 : n;
         f.solid_on_high_side = side == 0;
+        set_cells_away<DIM>(g, e, D, f);
         f.normal = gr.normal;
         f.wall_velocity = gr.wall_velocity;
         const double pf = phi[n], ps = phi[c];
@@ -76,7 +93,6 @@ void build_thin_body_faces(const Grid<DIM>& g, EmbeddedState& e) {
     const auto& sgs = e.side_ghosts[D];
     e.blocked[D].clear();
     if (sgs.empty()) continue;
-    const std::size_t s = static_cast<std::size_t>(g.stride[D]);
     const auto find = [&](std::size_t flow_cell, bool across_high) -> const SideGhost* {
       auto it = std::lower_bound(sgs.begin(), sgs.end(), std::make_pair(flow_cell, across_high),
                                  [](const SideGhost& a, const std::pair<std::size_t, bool>& k) {
@@ -89,8 +105,7 @@ void build_thin_body_faces(const Grid<DIM>& g, EmbeddedState& e) {
       f.fluid_cell = sg.flow_cell;
       f.solid_cell = sg.ghost.cell;
       f.solid_on_high_side = sg.across_high;
-      const std::size_t away = sg.across_high ? sg.flow_cell - s : sg.flow_cell + s;
-      f.fluid_cell2 = away < g.total && is_flow_cell(e.kind[away]) ? away : sg.flow_cell;
+      set_cells_away<DIM>(g, e, D, f);
       f.normal = sg.ghost.normal;
       f.wall_velocity = sg.ghost.wall_velocity;
       f.d = sg.face_distance;

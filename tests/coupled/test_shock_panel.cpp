@@ -79,8 +79,10 @@ std::string fmt_snapshot(int k) {
 
 // The embedded and the conforming panel velocity histories converge to each other: the largest difference over
 // the whole run (0 to 1 ms) against the conforming run's peak shrinks with the resolution and is within 10% at
-// 200 x 200 (measured 71% / 17% / 9.3% at 50^2 / 100^2 / 200^2: at the paper's 50 x 50 the hot region is five
-// cells across and neither run resolves the blast; peaks 34 / 28 / 26.7 m/s embedded, 21 / 24 / 25.2 conforming).
+// 200 x 200 (measured 30% / 18% / 8.6% at 50^2 / 100^2 / 200^2: at the paper's 50 x 50 the hot region is five
+// cells across and neither run resolves the blast; peaks 25.1 / 28.2 / 26.9 m/s embedded, 21 / 24 / 25.2
+// conforming; with the paper's wall velocity extrapolated across the shock the embedded 50^2 peak was 34.8 m/s,
+// 71% apart).
 TEST(ShockPanel, EmbeddedAndConformingPanelVelocityConverge) {
   double previous = 1e9;
   for (int n : {50, 100, 200}) {
@@ -109,6 +111,40 @@ TEST(ShockPanel, EmbeddedAndConformingPanelVelocityConverge) {
     EXPECT_LT(ve, -0.25 * e.peak());
     EXPECT_LT(vc, -0.25 * c.peak());
   }
+}
+
+// The paper's 50 x 50, the scene as shipped (second-order walls, embedded.order: 2) and first-order walls beside
+// it, to just past the peak of the panel's mean x velocity (0.23 ms). The panel's faces pass through cell centres
+// (d = 0, the largest half-cell extrapolation of the wall velocity), and the blast's reflected shock, spread by
+// MUSCL over the three cells next to the blast face, gave slopes the paper's two-difference minmod did not limit:
+// the peak was 34.8 m/s, 37% above the converged one (docs/deformable_structures.md, "Wall order at 50 x 50");
+// second order now takes the wall's velocity where a shock lies in the four cells next to the wall. Reference:
+// the scene with fluid.mesh.cells=[200,200] and nothing else changed, 25.46 m/s at 0.229 ms with first-order
+// walls and 25.43 with second-order ones (bench/coupled/run_panel_orders.py --fixed-panel). Measured now:
+// 25.08 m/s (second order), 25.02 (first order). Second order must be within 10% of it and no further from it than first order
+// (2% of the reference allowed for round-off in where the two runs' peaks fall).
+TEST(ShockPanel, SecondOrderWallsAtThePapersResolutionAsAccurateAsFirstOrder) {
+  constexpr double kReference200 = 25.46;  // [m/s], 200 x 200 background, panel 5 x 25
+  const std::string shorter = "--set coupling.time.end=2.6e-4";
+  double peak[2] = {0, 0};
+  for (int order : {1, 2}) {
+    const fs::path dir = run_dir("shock_panel_50_order" + std::to_string(order));
+    ASSERT_EQ(
+        cosim_run(scene_file("shock_panel_2d"), dir, shorter + " --set fluid.embedded.order=" + std::to_string(order)),
+        0)
+        << run_logs(dir);
+    const VelocityHistory h = panel_history(dir / "solid" / "block_history.csv");
+    ASSERT_GT(h.t.size(), 20u);
+    for (double v : h.v) peak[order - 1] = std::max(peak[order - 1], v);
+  }
+  const double e1 = std::abs(peak[0] - kReference200) / kReference200;
+  const double e2 = std::abs(peak[1] - kReference200) / kReference200;
+  std::printf(
+      "[ measured ] panel 50^2 peak mean velocity: first-order walls %.2f m/s (%.1f%% from 200^2), second-order "
+      "%.2f m/s (%.1f%%)\n",
+      peak[0], 100 * e1, peak[1], 100 * e2);
+  EXPECT_LT(e2, 0.10);
+  EXPECT_LE(e2, e1 + 0.02);
 }
 
 // The panel from a Gmsh file named relative to the scene (configs/shock_panel_2d_gmsh.yaml), run through

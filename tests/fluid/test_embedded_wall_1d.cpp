@@ -52,6 +52,8 @@ EmbeddedState planar_wall_1d(const FluidScene& s, double x_wall, double w) {
   WallFace f;
   f.fluid_cell = g.index(iw - 1);
   f.fluid_cell2 = g.index(iw - 2);
+  f.fluid_cell3 = g.index(iw - 3);
+  f.fluid_cell4 = g.index(iw - 4);
   f.solid_cell = g.index(iw);
   f.solid_on_high_side = true;
   f.normal = {-1, 0, 0};
