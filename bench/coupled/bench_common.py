@@ -1,4 +1,6 @@
-"""What the coupled benchmark scripts share: the repository paths and the provenance line of a run."""
+"""What the coupled benchmark scripts share: the repository paths, the provenance line of a run, timed runs and the
+panel's velocity history."""
+import csv
 import subprocess
 import sys
 import time
@@ -31,3 +33,15 @@ def timed_run(cmd, log):
     if rc != 0:
         sys.exit(f"failed ({rc}): {' '.join(cmd)}; see {log}")
     return time.perf_counter() - t0
+
+
+def panel_history(path):
+    """(time, mean x velocity) of the block named panel in a solid's block_history.csv, as numpy arrays."""
+    import numpy as np
+    t, v = [], []
+    with open(path) as fh:
+        for r in csv.DictReader(fh):
+            if r["block"] == "panel":
+                t.append(float(r["time"]))
+                v.append(float(r["velocity_x"]))
+    return np.array(t), np.array(v)

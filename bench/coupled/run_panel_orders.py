@@ -15,27 +15,16 @@ Prints a markdown table and writes bench/results/coupled_panel_orders.png (error
 Usage: bench/coupled/run_panel_orders.py [--sizes 50 100 200] [--build DIR] [--old-build DIR] [--fixed-panel] [--work DIR [--reuse]]
 """
 import argparse
-import csv
 import tempfile
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 
-from bench_common import RESULTS, ROOT, provenance, timed_run
+from bench_common import RESULTS, ROOT, panel_history, provenance, timed_run
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def history(path):
-    t, v = [], []
-    with open(path) as fh:
-        for r in csv.DictReader(fh):
-            if r["block"] == "panel":
-                t.append(float(r["time"]))
-                v.append(float(r["velocity_x"]))
-    return np.array(t), np.array(v)
 
 
 def main():
@@ -62,7 +51,7 @@ def main():
             stamp = out / "wall_seconds.txt"
             if args.reuse and stamp.exists():
                 wall = float(stamp.read_text())
-                t, v = history(out / "solid" / "block_history.csv")
+                t, v = panel_history(out / "solid" / "block_history.csv")
                 i = int(np.argmax(v))
                 res[(name, n)] = dict(v=np.interp(grid, t, v), peak=v[i], t_peak=t[i], wall=wall)
                 continue
@@ -71,7 +60,7 @@ def main():
                               "--quiet", "--set", f"fluid.mesh.cells=[{n},{n}]", "--set",
                               f"fluid.embedded.order={order}"] + panel, str(out) + ".log")
             stamp.write_text(f"{wall:.3f}\n")
-            t, v = history(out / "solid" / "block_history.csv")
+            t, v = panel_history(out / "solid" / "block_history.csv")
             i = int(np.argmax(v))
             res[(name, n)] = dict(v=np.interp(grid, t, v), peak=v[i], t_peak=t[i], wall=wall)
 

@@ -13,7 +13,6 @@ runs at 0.2 and 0.65 ms at 200^2 (bench/results/shock_panel_fields.png, shock_pa
 Usage: bench/coupled/run_shock_panel.py [--sizes 50 100 200] [--build DIR] [--work DIR]
 """
 import argparse
-import csv
 import math
 import subprocess
 import tempfile
@@ -22,22 +21,10 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 
-from bench_common import RESULTS, ROOT, provenance, timed_run
+from bench_common import RESULTS, ROOT, panel_history, provenance, timed_run
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def history(path):
-    t, v = [], []
-    with open(path) as fh:
-        for r in csv.DictReader(fh):
-            if r["block"] == "panel":
-                t.append(float(r["time"]))
-                v.append(float(r["velocity_x"]))
-    return np.array(t), np.array(v)
-
-
 
 
 def main():
@@ -59,8 +46,8 @@ def main():
                                   "solid.mesh.upper=[1,1]"]
         wc = timed_run([str(bin_dir / "solid_solver"), str(ROOT / "configs/shock_panel_2d_conforming.yaml"), "--out",
                     str(conf), "--quiet"] + box, str(conf) + ".log")
-        te, ve = history(emb / "solid" / "block_history.csv")
-        tc, vc = history(conf / "block_history.csv")
+        te, ve = panel_history(emb / "solid" / "block_history.csv")
+        tc, vc = panel_history(conf / "block_history.csv")
         res[n] = dict(e=np.interp(grid, te, ve), c=np.interp(grid, tc, vc), we=we, wc=wc, emb=emb, conf=conf)
 
     print(f"Blast on a steel panel (paper 9.5), panel mean velocity over 0-1 ms; {provenance(bin_dir)}\n")
