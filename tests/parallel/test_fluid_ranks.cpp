@@ -189,25 +189,29 @@ TEST(FluidRanks, AnIoErrorOnRankZeroStopsEveryRankWithCodeFour) {
   EXPECT_EQ(summary_of(out)["parallel"]["failed_rank"].get<int>(), 0);
 }
 
-// kill -9 of one rank: mpirun ends the others, the run returns non-zero within 5 s.
-TEST(FluidRanks, AKilledRankEndsTheRunWithinFiveSeconds) {
-  const auto out = scratch_path("killed");
-  std::chrono::steady_clock::time_point killed_at;
-  std::thread killer([&] {
-    // the ranks' process ids: fluid_solver processes writing into `out`
+// The 2-rank Gresho run of the failure tests, with `pkill -SIGNAL` sent to its newest rank once its first snapshot is
+// written (by pattern, not matching this shell); the run and the seconds from the signal to the run's end.
+std::pair<RankRun, double> run_with_a_signalled_rank(const std::filesystem::path& out, const std::string& signal) {
+  std::chrono::steady_clock::time_point sent_at;
+  std::thread sender([&] {
     for (int i = 0; i < 200; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
       if (std::filesystem::exists(out / "fluid_000000.h5")) break;
     }
-    const std::string cmd = "pkill -9 -n -f 'fluid_solve[r] .*--out " + out.string() + " '";  // not this shell
-    killed_at = std::chrono::steady_clock::now();
+    sent_at = std::chrono::steady_clock::now();
+    const std::string cmd = "pkill -" + signal + " -n -f 'fluid_solve[r] .*--out " + out.string() + " '";
     EXPECT_EQ(std::system(cmd.c_str()), 0);
   });
   const RankRun r = run_fluid_ranks(2, scene_path("gresho_vortex"), out,
                                     "--set fluid.mesh.cells=[200,200] --set fluid.output.interval=0.01", 120);
   const auto ended = std::chrono::steady_clock::now();
-  killer.join();
-  const double after_kill = std::chrono::duration<double>(ended - killed_at).count();
+  sender.join();
+  return {r, std::chrono::duration<double>(ended - sent_at).count()};
+}
+
+// kill -9 of one rank: mpirun ends the others, the run returns non-zero within 5 s.
+TEST(FluidRanks, AKilledRankEndsTheRunWithinFiveSeconds) {
+  const auto [r, after_kill] = run_with_a_signalled_rank(scratch_path("killed"), "9");
   EXPECT_NE(r.code, 0) << r.log;
   EXPECT_LT(after_kill, 5.0) << r.log;
   std::printf("[ measured ] one of 2 ranks killed: the run ended with code %d %.2f s after the kill\n", r.code,
@@ -221,21 +225,7 @@ TEST(FluidRanks, AKilledRankEndsTheRunWithinFiveSeconds) {
 // is stopped depends on which process started last.)
 TEST(FluidRanks, AStoppedRankEndsTheRunWithinFiveSeconds) {
   const auto out = scratch_path("stopped");
-  std::chrono::steady_clock::time_point stopped_at;
-  std::thread stopper([&] {
-    for (int i = 0; i < 200; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      if (std::filesystem::exists(out / "fluid_000000.h5")) break;
-    }
-    stopped_at = std::chrono::steady_clock::now();
-    const std::string cmd = "pkill -STOP -n -f 'fluid_solve[r] .*--out " + out.string() + " '";
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
-  });
-  const RankRun r = run_fluid_ranks(2, scene_path("gresho_vortex"), out,
-                                    "--set fluid.mesh.cells=[200,200] --set fluid.output.interval=0.01", 120);
-  const auto ended = std::chrono::steady_clock::now();
-  stopper.join();
-  const double after_stop = std::chrono::duration<double>(ended - stopped_at).count();
+  const auto [r, after_stop] = run_with_a_signalled_rank(out, "STOP");
   EXPECT_EQ(r.code, 5) << r.log;
   EXPECT_LT(after_stop, 5.0) << r.log;
   EXPECT_NE(r.log.find("has been silent for"), std::string::npos) << r.log;

@@ -6,28 +6,9 @@
 # Usage: paraview_shows_a_run.sh BUILD_DIR
 set -euo pipefail
 build="$1"
-if ! command -v pvbatch > /dev/null || ! command -v xvfb-run > /dev/null; then
-  echo "skipped: ParaView is not installed (apt-get install paraview python3-paraview xvfb)"
-  exit 77
-fi
 here="$(cd "$(dirname "$0")" && pwd)"
+source "$here/headless.sh"  # the skip where ParaView is absent, $work and pvbatch_headless
 configs="$here/../../configs"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-
-# pvbatch SCRIPT ARGS... under Xvfb with GLX and software GL, its output in $work/pvbatch.log; a display that is not
-# up yet ("bad X server connection") is tried again.
-pvbatch_headless() {
-  local rc=0
-  for attempt in 1 2 3 4 5; do
-    rc=0
-    LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1024x768x24 +extension GLX" \
-      pvbatch "$@" > "$work/pvbatch.log" 2>&1 || rc=$?
-    grep -q "bad X server connection" "$work/pvbatch.log" || break
-    sleep 1
-  done
-  return "$rc"
-}
 
 rc=0
 while read -r scene end; do
