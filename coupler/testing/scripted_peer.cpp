@@ -3,12 +3,13 @@
 //   cosim_scripted_peer --role fluid|solid --endpoint EP [--token T] [--scene FILE] [--set k=v ...]
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
-//                       [--extra-proposals N] [--hang-after N] [--min-pressure P]
+//                       [--extra-proposals N] [--sample-delay-ms T] [--hang-after N] [--min-pressure P]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
 //        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle, and with
 //        --extra-proposals N sends N more DtProposals right after its faces (a misbehaving peer).
+//        --sample-delay-ms T makes the fluid wait T ms before each FluidSamples (a slow peer).
 // --hang-after N: after N cycles it stops answering but keeps its heartbeats (a hung solver loop).
 // Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr).
 #include <fmt/format.h>
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
   int extra_proposals = 0;
   app.add_option("--extra-proposals", extra_proposals, "solid: DtProposals sent ahead of the cycle after its faces");
   long hang_after = -1;
+  int sample_delay_ms = 0;
+  app.add_option("--sample-delay-ms", sample_delay_ms, "fluid: wait this long before sending its samples");
   app.add_option("--hang-after", hang_after, "cycles after which it stops answering (heartbeats go on)");
   CLI11_PARSE(app, argc, argv);
   if (token.empty()) token = cosim::app::token_from_environment();  // as cosim run passes it
@@ -113,6 +116,7 @@ int main(int argc, char** argv) {
           s.impedance.push_back(408.0);
         }
         s.wetted.assign(f.count, 1);
+        if (sample_delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(sample_delay_ms));
         c.send_samples(s);
         c.receive_states();
       }

@@ -164,7 +164,11 @@ TEST(CouplingProcesses, AnOversizedMessageDropsOnlyItsConnection) {
 // with a message naming the peer and the message, never a hang.
 TEST(CouplingProcesses, MessagesAheadOfTheCycleAreQueuedOrRefused) {
   for (const int extra : {1, 20}) {
-    ThreeProcs r("ahead_" + std::to_string(extra), kShort, {}, {"--extra-proposals", std::to_string(extra)});
+    // The fluid answers late, so that all of the solid's extra proposals are queued while the coupler waits for it
+    // (without the delay, a quick fluid lets the coupler meet the flood one message at a time).
+    const std::vector<std::string> fluid_args =
+        extra == 1 ? std::vector<std::string>{} : std::vector<std::string>{"--sample-delay-ms", "500"};
+    ThreeProcs r("ahead_" + std::to_string(extra), kShort, fluid_args, {"--extra-proposals", std::to_string(extra)});
     wait_all(r.cs, 20);
     EXPECT_EQ(r.cs[0].exit_code, 5) << r.log(0);
     EXPECT_NE(r.cs[1].exit_code, 0);
