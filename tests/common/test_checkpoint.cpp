@@ -13,6 +13,7 @@
 #include "common/checkpoint/output_resume.h"
 #include "common/checkpoint/part_file.h"
 #include "common/util/sha256.h"
+#include "tests/support/flip_bit.h"
 #include "tests/support/scratch_dir.h"
 
 namespace fs = std::filesystem;
@@ -211,20 +212,6 @@ TEST(CheckpointOutputs, ASnapshotSeriesContinuesAfterItsCheckpointedEntries) {
 }
 
 namespace {
-// Flips one bit of `file` at byte `at` (from the end when negative), as a bad sector or a stray write would.
-void flip_bit(const fs::path& file, long at) {
-  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
-  f.seekg(0, std::ios::end);
-  const long size = f.tellg();
-  const long pos = at >= 0 ? at : size + at;
-  f.seekg(pos);
-  char c = 0;
-  f.read(&c, 1);
-  c ^= 0x10;
-  f.seekp(pos);
-  f.write(&c, 1);
-}
-
 std::string error_of(const std::function<void()>& fn) {
   try {
     fn();
@@ -279,7 +266,7 @@ TEST(CheckpointIntegrity, TheManifestRecordsEachPartsChecksumAndAFlippedBitIsRef
   EXPECT_NO_THROW(verify_set(s));
   EXPECT_NO_THROW(open_verified_part(set_path(root, 200), "fluid.h5", "fluid"));
   // One bit, in the middle of the data: the part is refused, the newest intact set is chosen and the refusal said.
-  flip_bit(part, -100);
+  cosim::test::flip_bit(part, -100);
   std::string why = error_of([&] { verify_set(read_set(set_path(root, 200))); });
   EXPECT_NE(why.find("coupler.h5: SHA-256"), std::string::npos) << why;
   EXPECT_NE(why.find("the part is corrupt"), std::string::npos) << why;

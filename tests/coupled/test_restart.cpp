@@ -13,6 +13,7 @@
 #include "common/checkpoint/checkpoint_sets.h"
 #include "coupled_test_util.h"
 #include "run_compare.h"
+#include "tests/support/flip_bit.h"
 
 using namespace cosim::test;
 
@@ -177,16 +178,7 @@ TEST(Restart, ACorruptPartIsRefusedByNameAndTheRestartTakesTheNewestIntactSet) {
   const auto sets = sets_of(dir);
   ASSERT_EQ(sets.size(), 2u);
   // One bit of the coupler's part flipped (its pressure predictor and histories are near the end of the file).
-  {
-    const fs::path part = sets.back().dir / "coupler.h5";
-    std::fstream f(part, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekg(-200, std::ios::end);
-    char c = 0;
-    f.read(&c, 1);
-    c ^= 0x01;
-    f.seekp(-200, std::ios::end);
-    f.write(&c, 1);
-  }
+  cosim::test::flip_bit(sets.back().dir / "coupler.h5", -200);
   const std::string base = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --restart " +
                            dir.string() + " --quiet " + args;
   // Asked for by number, the set is refused, naming the part; nothing starts.
