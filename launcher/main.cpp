@@ -48,9 +48,13 @@ int main(int argc, char** argv) {
   cosim::launcher::LaunchOptions co;
   chk->add_option("scene", co.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
   chk->add_option("--set", co.overrides, "override a scene value: key.path=value (repeatable)");
+  chk->add_option("--fluid-ranks", co.fluid_ranks,
+                  "the fluid's MPI ranks, as cosim run --fluid-ranks: the plan states their layout, cells and memory")
+      ->check(CLI::PositiveNumber);
   chk->footer(
       "Examples:\n"
       "  cosim check configs/shock_panel_2d.yaml           every section as its program reads it; exit 0 or 2\n"
+      "  cosim check configs/particle_blast_2d.yaml --fluid-ranks 8   the layout of 8 ranks, cells and memory of each\n"
       "  cosim check configs/piston_2d.yaml --set coupling.time.end=1e-3");
   auto* view = app.add_subcommand("view", "open a run in ParaView with its state RUN/view.py");
   std::string view_dir;

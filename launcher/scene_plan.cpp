@@ -90,7 +90,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
                       plan.has_fluid() && eff.fluid_cmd.empty(),
                       plan.has_solid() && eff.solid_cmd.empty(),
                       eff.coupler_cmd.empty(),
-                      plan.kind == RunKind::SolidOnly};
+                      plan.kind == RunKind::SolidOnly,
+                      eff.fluid_ranks};
   if (const auto refusal = check_scene(sc, &plan.lines, &plan.facts)) {
     std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
                              refusal->message);
@@ -106,7 +107,10 @@ int check(const LaunchOptions& opt) {
                            plan->coupled()                    ? "the fluid, the solid and the coupler"
                            : plan->kind == RunKind::SolidOnly ? "the solid"
                                                               : "the fluid");
-  for (const auto& l : plan->lines) std::cout << "  " << l << "\n";
+  for (std::string l : plan->lines) {  // a program's plan may hold several lines: each indented
+    for (std::size_t at = 0; (at = l.find('\n', at)) != std::string::npos; at += 3) l.replace(at, 1, "\n  ");
+    std::cout << "  " << l << "\n";
+  }
   if (plan->coupled())
     if (const std::string estimate = coupled_estimate(plan->facts); !estimate.empty())
       std::cout << "  " << estimate << "\n";

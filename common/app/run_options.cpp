@@ -21,6 +21,9 @@ std::optional<int> parse_command_line(int argc, char** argv, const std::string& 
                "validate the scene and the files it names as a run would read them, run nothing, write nothing: "
                "exit 0 when it can run, 2 with the first error");
   app.add_flag("--plan-facts", opt.plan_facts)->group("");  // cosim check's (plan_facts.h): not in --help
+  app.add_option("--ranks", opt.check_ranks,
+                 "with --check: the plan on this many MPI ranks (the layout, the cells and memory of each rank)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--set", opt.overrides, "override a scene key: key.path=value (repeatable)");
   app.add_flag("--quiet,-q", opt.quiet, "no progress line");
   app.add_option("--threads", opt.threads,

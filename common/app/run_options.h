@@ -1,7 +1,7 @@
 // Command line of a standalone solver run and the steps every run starts with.
 //   NAME SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--threads N] [--coupler EP --token T]
 //                   [--restart SET] [--checkpoints ROOT]
-//   NAME SCENE.yaml --check [--set key.path=value ...]
+//   NAME SCENE.yaml --check [--ranks N] [--set key.path=value ...]
 #pragma once
 
 #include <spdlog/spdlog.h>
@@ -25,6 +25,7 @@ struct RunOptions {
   std::string token;        // per-run token of a coupled run (--token, else $COSIM_TOKEN)
   bool check = false;       // --check: validate the scene and the files it names, run nothing, write nothing
   bool plan_facts = false;  // --plan-facts (with --check, for cosim check): the plan's figures as JSON (plan_facts.h)
+  int check_ranks = 0;      // --ranks N (with --check): the plan on N MPI ranks (layout, cells and memory per rank)
   std::filesystem::path restart;      // --restart SET: resume from this checkpoint set (checkpoint_sets.h)
   std::filesystem::path checkpoints;  // --checkpoints ROOT: where a fluid-only run writes its sets (OUT/checkpoints)
   bool coupled() const { return !coupler.empty(); }

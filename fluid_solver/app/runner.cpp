@@ -21,6 +21,7 @@
 #include "fluid_solver/app/fluid_checkpoint.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/io/fluid_output.h"
+#include "fluid_solver/parallel/rank_plan.h"
 
 namespace cosim::fluid {
 
@@ -44,7 +45,8 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
   const double updates = static_cast<double>(sim.steps()) * cells;
   j["cell_updates"] = updates;
   j["cell_updates_per_s"] = rec.wall > 0 ? updates / rec.wall : 0.0;
-  j["state_bytes_per_cell"] = static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());  // a rank's
+  j["state_bytes_per_cell"] =
+      static_cast<double>(sim.state_bytes()) / static_cast<double>(sim.interior_cells());  // a rank's
   j["threads"] = omp_get_max_threads();
   j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
   const nlohmann::json end_totals = totals_json(s, rec.end_totals ? *rec.end_totals : sim.totals());
@@ -143,12 +145,22 @@ int run_fluid(const RunOptions& opt, const parallel::MpiSession& mpi) {
     else if (!s->output_times.empty())
       plan += fmt::format(" ({} for {} of them)", util::format_bytes(snapshot * (s->output_times.size() + 1)),
                           s->output_times.size() + 1);
+    std::string ranks_line;  // the layout on --ranks N, refused as the run would refuse it
+    if (opt.check_ranks > 0) {
+      try {
+        ranks_line = rank_plan(*s, opt.check_ranks, state, facts);
+      } catch (const std::exception& e) {
+        spdlog::error("{}: {}", opt.scene_name(), e.what());
+        return 2;
+      }
+    }
     std::cout << fmt::format(
         "fluid: {}D, {} cells ({:.4g}), {} phase(s) ({}){}, {} flux, state about {}{}{}{}\n", s->dim, shape, cells,
         s->num_phases(), names, s->exchange.dispersed ? ", the second dispersed" : "", to_string(s->flux),
         util::format_bytes(state),
         s->embedded.bodies.empty() ? "" : fmt::format(", {} embedded bod(ies)", s->embedded.bodies.size()),
         s->checkpoint.enabled() ? ", " + checkpoint::describe(s->checkpoint) : "", plan);
+    if (!ranks_line.empty()) std::cout << "fluid " << ranks_line << "\n";
     if (opt.plan_facts) app::print_plan_facts(facts);
     return 0;
   }

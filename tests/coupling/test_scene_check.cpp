@@ -86,6 +86,34 @@ TEST(SceneCheck, ThePlanStatesTheFirstStepAndTheOutputVolume) {
   EXPECT_NE(log.find("snapshots about 38 KiB each"), std::string::npos) << log;
 }
 
+// cosim check --fluid-ranks N states the layout the ranks will take and each rank's share: the 200 x 200 particle
+// blast on 3 ranks is split along y (the least cut area, slow axes first on ties) into blocks of 200 x 67 and
+// 200 x 66 cells; a layout the scene fixes is stated as such, and one that does not fit the ranks is refused as the
+// run would refuse it, naming the key.
+TEST(SceneCheck, ThePlanStatesTheLayoutOfTheFluidsRanks) {
+  const fs::path dir = test_dir("check_plan_ranks");
+  const std::string check =
+      bin("cosim").string() + " check " + (fs::path(COSIM_SOURCE_DIR) / "configs" / "particle_blast_2d.yaml").string();
+  auto [rc, log] = run_shell(dir, check + " --fluid-ranks 3");
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("ranks: 3, layout 1 x 3 (the least cut area), the largest block 200 x 67 cells (13400; the "
+                     "smallest 13200), state about "),
+            std::string::npos)
+      << log;
+  std::tie(rc, log) = run_shell(dir, check + " --fluid-ranks 3 --set 'fluid.parallel.ranks=[3, 1]'");
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("ranks: 3, layout 3 x 1 (fluid.parallel.ranks), the largest block 67 x 200 cells"),
+            std::string::npos)
+      << log;
+  std::tie(rc, log) = run_shell(dir, check + " --fluid-ranks 3 --set 'fluid.parallel.ranks=[2, 1]'");
+  EXPECT_EQ(rc, 2) << log;
+  EXPECT_NE(log.find("fluid.parallel.ranks [2, 1]"), std::string::npos) << log;
+  // One rank: no ranks line.
+  std::tie(rc, log) = run_shell(dir, check);
+  EXPECT_EQ(rc, 0) << log;
+  EXPECT_EQ(log.find("ranks:"), std::string::npos) << log;
+}
+
 // The coupled cycle: the blast on the steel panel has the fluid's first step 3.64e-6 s and the solid's stable step
 // 9.67e-7 s (its elements are 0.02 m of 4340 steel, c about 5 km/s): the solid's step sets the first cycle's; with
 // 10 solid substeps per cycle the fluid's step does.
