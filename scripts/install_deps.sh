@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages this project needs, only those that are missing. With --runtime, only what an
-# installed build needs to run (the shared libraries and the Python packages: docker/Dockerfile's run stage).
+# installed build needs to run (the shared libraries and the Python packages: docker/Dockerfile's run stage). With
+# --tests, also what only the tests use (a one-node SLURM cluster: slurm-wlm and munge).
 set -euo pipefail
 RUNTIME_PACKAGES=(
   libstdc++6 libgomp1 libyaml-cpp0.7 libspdlog1.10 libfmt9 libhdf5-openmpi-103-1 libzmq5 libprotobuf32 libopenmpi3 openmpi-bin libmetis5
@@ -12,7 +13,9 @@ PACKAGES=(
   libgtest-dev libzmq3-dev libprotobuf-dev protobuf-compiler libopenmpi-dev openmpi-bin libmetis-dev
   python3 python3-numpy python3-matplotlib python3-h5py python3-zmq python3-protobuf python3-yaml python3-pytest
 )
+TEST_PACKAGES=(slurm-wlm munge)
 [ "${1:-}" = "--runtime" ] && PACKAGES=("${RUNTIME_PACKAGES[@]}")
+[ "${1:-}" = "--tests" ] && PACKAGES+=("${TEST_PACKAGES[@]}")
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# A one-node SLURM cluster made for the test (its own munged, slurmctld and slurmd, ports and state in a scratch
+# folder): a fluid-only scene submitted with sbatch runs its ranks through srun and ends with the snapshots of one
+# rank, bit for bit; a job cancelled as a time limit ends it (SIGTERM, then SIGKILL) leaves a run that a second job
+# restarts with `cosim run --restart` from its newest checkpoint set, ending as the uninterrupted run.
+# Usage: slurm_one_node.sh BUILD_DIR   (as root; exit 77 where slurm-wlm or munge is not installed)
+set -euo pipefail
+build="$(cd "$1" && pwd)"
+source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
+for tool in slurmctld slurmd sbatch srun munged mungekey; do
+  command -v "$tool" > /dev/null || PATH="$PATH:/usr/sbin" command -v "$tool" > /dev/null || {
+    echo "skipped: $tool is not installed (apt-get install slurm-wlm munge)"
+    exit 77
+  }
+done
+export PATH="$PATH:/usr/sbin"
+if [ "$(id -u)" != 0 ]; then
+  echo "skipped: a SLURM daemon needs root"
+  exit 77
+fi
+work="$(mktemp -d /tmp/cosim_slurm_XXXXXX)"
+chmod 711 "$work"
+pids=()
+finish() {
+  local rc=$?
+  scancel --quiet --full "--name=cosim_slurm_test" 2> /dev/null || true
+  for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done
+  wait 2> /dev/null || true
+  if [ "$rc" = 0 ]; then rm -rf "$work"; else
+    echo "--- kept $work; daemon logs:"
+    tail -n 20 "$work"/*.log 2> /dev/null || true
+  fi
+}
+trap finish EXIT
+
+free_port() { /usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
+
+# munge with a key and a socket of its own
+mungekey --create --keyfile="$work/munge.key" > /dev/null 2>&1
+munged --force --socket="$work/munge.sock" --key-file="$work/munge.key" --pid-file="$work/munged.pid" \
+  --log-file="$work/munged.log" --seed-file="$work/munge.seed" --foreground > "$work/munged.out" 2>&1 &
+pids+=($!)
+for _ in $(seq 50); do [ -S "$work/munge.sock" ] && break; sleep 0.1; done
+
+host="$(hostname)"
+cpus="$(nproc)"
+mkdir -p "$work/state" "$work/spool"
+cat > "$work/slurm.conf" << CONF
+ClusterName=cosimtest
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$(free_port)
+SlurmdPort=$(free_port)
+AuthType=auth/munge
+AuthInfo=socket=$work/munge.sock
+SlurmUser=root
+SlurmdUser=root
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldLogFile=$work/slurmctld.log
+SlurmdLogFile=$work/slurmd.log
+ProctrackType=proctrack/pgid
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core
+MpiDefault=pmix
+KillWait=5
+ReturnToService=2
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=4000 State=UNKNOWN
+PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
+CONF
+export SLURM_CONF="$work/slurm.conf"
+slurmctld -D -i -f "$SLURM_CONF" > "$work/slurmctld.out" 2>&1 &
+pids+=($!)
+slurmd -D -f "$SLURM_CONF" > "$work/slurmd.out" 2>&1 &
+pids+=($!)
+for _ in $(seq 100); do
+  [ "$(sinfo -h -o %T 2> /dev/null | head -n 1)" = idle ] && break
+  sleep 0.2
+done
+[ "$(sinfo -h -o %T | head -n 1)" = idle ] || { echo "FAIL: the test cluster's node did not come up"; exit 1; }
+
+cosim="$build/bin/cosim"
+scene="$source_dir/configs/sod.yaml"
+sets="--set fluid.mesh.cells=[2000] --set fluid.output.interval=0.05 --set fluid.checkpoint.interval=0.02 --set fluid.checkpoint.keep=3"
+ok=1
+fail() { echo "FAIL: $*"; ok=0; }
+
+# 1. The reference: one rank, no SLURM.
+env -u SLURM_JOB_ID "$cosim" run "$scene" --quiet --out "$work/one" $sets > "$work/one.log" 2>&1 ||
+  { cat "$work/one.log"; fail "the one-rank run failed"; }
+
+# The example job script of docs/cluster.md, on one node with two tasks of one CPU each.
+job_script="$source_dir/examples/cluster/cosim_job.sbatch"
+submit() {  # submit RUN OUTPUT [sbatch options] -- [cosim run arguments]
+  local run="$1" output="$2"
+  shift 2
+  local opts=()
+  while [ "$1" != -- ]; do opts+=("$1"); shift; done
+  shift
+  sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks=2 --ntasks-per-node=2 --cpus-per-task=1 \
+    --output="$output" --export="ALL,SCENE=$scene,RUN=$run,COSIM=$cosim" "${opts[@]}" "$job_script" "$@"
+}
+
+# 2. A batch job of two tasks: cosim starts the fluid's ranks with srun.
+submit "$work/two" "$work/job2.out" --wait -- $sets > /dev/null || { cat "$work/job2.out"; fail "the batch job of two ranks failed"; }
+grep -q '"srun"' "$work/two/launch.json" || fail "launch.json does not start the fluid with srun: $(cat "$work/two/launch.json")"
+ranks="$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["parallel"]["ranks"])' "$work/two/fluid/summary.json")"
+[ "$ranks" = 2 ] || fail "the fluid's summary says $ranks ranks, expected 2"
+/usr/bin/python3 "$source_dir/tests/cluster/same_snapshots.py" "$work/one/fluid" "$work/two/fluid" || fail "2 ranks under srun differ from one rank"
+
+# 3. A job that runs out of its time: cancelled after its second checkpoint set as the time limit would end it
+#    (SIGTERM, SIGKILL after KillWait); the same job script submitted again goes on from the newest set.
+long="$sets --set fluid.mesh.cells=[10000] --set fluid.time.end=0.5"  # some 5 s on two idle cores
+job="$(submit "$work/three" "$work/job3.out" --parsable -- $long)"
+for _ in $(seq 600); do
+  [ "$(ls -d "$work/three/checkpoints/"*/ 2> /dev/null | wc -l)" -ge 2 ] && break
+  sleep 0.1
+done
+scancel "$job"
+for _ in $(seq 300); do
+  squeue -h -j "$job" 2> /dev/null | grep -q . || break
+  sleep 0.1
+done
+status="$(/usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); print(s["status"], "|", s.get("reason", ""))' "$work/three/run_summary.json")"
+case "$status" in
+  interrupted* | failed*) echo "cancelled job: $status" ;;
+  *) fail "the cancelled run's summary says: $status" ;;
+esac
+submit "$work/three" "$work/job4.out" --wait -- $long > /dev/null || { cat "$work/job4.out"; fail "the resubmitted job failed"; }
+grep -q "restarting from the checkpoint" "$work/job4.out" || fail "the resubmitted job did not restart: $(head -n 5 "$work/job4.out")"
+env -u SLURM_JOB_ID "$cosim" run "$scene" --quiet --out "$work/whole" $long > "$work/whole.log" 2>&1 ||
+  fail "the uninterrupted run failed"
+/usr/bin/python3 "$source_dir/tests/cluster/same_snapshots.py" "$work/whole/fluid" "$work/three/fluid" ||
+  fail "the job restarted after its time limit differs from the uninterrupted run"
+
+[ "$ok" = 1 ] && echo "one-node SLURM: srun ranks equal one rank; a cancelled job restarts bit for bit"
+[ "$ok" = 1 ]
