@@ -155,6 +155,10 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     return 2;
   }
   if (root && !app::make_output_directory(opt.out_dir)) parallel::MpiSession::abort_all(4);
+  if (root) {  // an earlier run's: a failing rank's summary is then the only one (fail_alone)
+    std::error_code ec;
+    std::filesystem::remove(opt.out_dir / "summary.json", ec);
+  }
   comm.barrier();  // the folder exists before any rank writes into it
   const RankPart& part = links->part();
   spdlog::info("{}: {}D, {} elements, {} nodes, {} block(s), {} rank(s) (METIS, {} cut faces), {} thread(s) per rank",
@@ -225,8 +229,11 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   // A failure on this rank alone: its summary and message, then every rank ends with its code.
   const auto fail_alone = [&](int code, const std::string& error) {
     rec.status = code == 130 ? "interrupted" : "failed";
-    rec.error = fmt::format("{} ({} of its {} elements)", error, mpi.describe(), part.owned_elements);
+    rec.error = fmt::format("{} ({}, {} elements)", error, mpi.describe(), part.owned_elements);
     spdlog::error("{}: {}", mpi.describe(), error);
+    // Interrupted because another rank failed and aborted the run: that rank's summary (written before its abort)
+    // stays.
+    if (code == 130 && std::filesystem::exists(opt.out_dir / "summary.json")) parallel::MpiSession::abort_all(code);
     rec.extra["parallel"] = {{"ranks", mpi.size()}, {"layout", "metis"}, {"failed_rank", mpi.rank()}};
     rec.end = sim->energy();  // this rank's share only: the others cannot be asked
     try {
