@@ -135,10 +135,14 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
         restored = restore_run(opt.restart, *sim, scene);
       } catch (const std::exception& e) { restart_error = e.what(); }
     }
-    const MeshPartition partition = partition_elements(sim->mesh(), mpi.size());
-    cut_faces = partition.cut_faces;
-    links = std::make_unique<MpiRankLinks>(comm, make_rank_part(sim->mesh(), partition, mpi.rank()));
-    if (mpi.size() > 1) sim->set_rank_links(links.get());
+    if (mpi.size() > 1) {
+      const MeshPartition partition = partition_elements(sim->mesh(), mpi.size());
+      cut_faces = partition.cut_faces;
+      links = std::make_unique<MpiRankLinks>(comm, make_rank_part(sim->mesh(), partition, mpi.rank()));
+      sim->set_rank_links(links.get());
+    } else {  // the one-rank time step, untouched; the part only for the summary
+      links = std::make_unique<MpiRankLinks>(comm, whole_mesh_part(sim->mesh()));
+    }
   } catch (const StateError& e) {
     setup_error = e.what();
     setup_code = 3;

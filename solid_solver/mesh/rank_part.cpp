@@ -68,4 +68,17 @@ RankPart make_rank_part(const Mesh& m, const MeshPartition& p, int rank) {
   return r;
 }
 
+RankPart whole_mesh_part(const Mesh& m) {
+  RankPart r;
+  r.node_owner.assign(static_cast<std::size_t>(m.num_nodes), 0);
+  r.element_part.assign(static_cast<std::size_t>(m.num_elements), 0);
+  r.owned_nodes.resize(static_cast<std::size_t>(m.num_nodes));
+  for (int n = 0; n < m.num_nodes; ++n) r.owned_nodes[n] = n;
+  r.element_role.assign(static_cast<std::size_t>(m.num_elements), kElementOwned);
+  for (const auto& br : m.block_range)
+    if (br[1] > br[0]) r.runs.push_back({br[0], br[1], kElementOwned});
+  r.owned_elements = m.num_elements;
+  return r;
+}
+
 }  // namespace cosim::solid

@@ -38,5 +38,7 @@ struct RankPart {
 
 // Rank `rank`'s part of partition p of mesh m.
 RankPart make_rank_part(const Mesh& m, const MeshPartition& p, int rank);
+// The part of a run on one rank (what make_rank_part gives for one part, without partitioning): everything owned.
+RankPart whole_mesh_part(const Mesh& m);
 
 }  // namespace cosim::solid

@@ -72,6 +72,14 @@ TEST(SolidRankPart, OwnersHalosAndPlansAreConsistent) {
     hex.block_names = {"a", "b"};
     finalize_mesh(hex);
     check_parts(hex, ranks);
+    if (ranks == 1) {  // the one-rank shortcut is what a partition of one part gives
+      const RankPart a = whole_mesh_part(hex), b = make_rank_part(hex, partition_elements(hex, 1), 0);
+      EXPECT_EQ(a.owned_nodes, b.owned_nodes);
+      EXPECT_EQ(a.element_role, b.element_role);
+      EXPECT_EQ(a.node_owner, b.node_owner);
+      EXPECT_EQ(a.runs.size(), b.runs.size());
+      EXPECT_TRUE(b.ghosts.neighbours.empty());
+    }
   }
 }
 
