@@ -228,8 +228,9 @@ int run(const LaunchOptions& opt) {
   const bool coupled = plan->coupled();
   if (plan->kind == RunKind::SolidOnly && !opt.restart.empty()) {
     std::cerr << fmt::format(
-        "cosim: --restart: {} is a solid-only run, which writes no checkpoints (they are "
-        "written in coupled and fluid-only runs)\n",
+        "cosim: --restart: {} is a solid-only run, which writes no checkpoints through cosim (with "
+        "solid.checkpoint, restart solid_solver itself: solid_solver SCENE --out RUN/solid --restart "
+        "RUN/solid/checkpoints/NNNNNNNNN)\n",
         opt.scene);
     return 2;
   }
