@@ -228,8 +228,9 @@ int run(const LaunchOptions& opt) {
   const bool coupled = plan->coupled();
   if (plan->kind == RunKind::SolidOnly && !opt.restart.empty()) {
     std::cerr << fmt::format(
-        "cosim: --restart: {} is a solid-only run, which writes no checkpoints (they are "
-        "written in coupled and fluid-only runs)\n",
+        "cosim: --restart: {} is a solid-only run, which writes no checkpoints through cosim (with "
+        "solid.checkpoint, restart solid_solver itself: solid_solver SCENE --out RUN/solid --restart "
+        "RUN/solid/checkpoints/NNNNNNNNN)\n",
         opt.scene);
     return 2;
   }
@@ -342,9 +343,12 @@ int run(const LaunchOptions& opt) {
     fluid.insert(fluid.end(), program.begin(), program.end());
     children.push_back({"fluid", fluid, out / "fluid.log"});
   }
-  if (plan->has_solid())
-    children.push_back(
-        {"solid", with_common(command(eff.solid_cmd, "solid_solver"), "solid", true), out / "solid.log"});
+  if (plan->has_solid()) {
+    std::vector<std::string> solid = rank_launcher(eff.solid_ranks);  // mpirun / srun before the program
+    const std::vector<std::string> program = with_common(command(eff.solid_cmd, "solid_solver"), "solid", true);
+    solid.insert(solid.end(), program.begin(), program.end());
+    children.push_back({"solid", solid, out / "solid.log"});
+  }
   // A restart adds to the logs of the earlier attempts, after a line that marks where it begins.
   if (attempt.restart)
     for (auto& c : children) {

@@ -25,6 +25,7 @@ struct LaunchOptions {
   std::filesystem::path restart;  // --restart RUN: resume the run in RUN from its newest complete checkpoint set
   long restart_from = -1;         // --from N: from set N instead (-1: the newest)
   int fluid_ranks = 0;            // --fluid-ranks N (0: the scene's launcher.fluid_ranks, else 1)
+  int solid_ranks = 0;            // --solid-ranks N (0: the scene's launcher.solid_ranks, else 1)
 };
 
 // Runs to completion; returns 0, or the exit code of the process whose failure started the chain (docs/output.md,

@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
   run->add_option("--fluid-ranks", o.fluid_ranks,
                   "MPI ranks of the fluid (a fluid-only scene; default: the scene's launcher.fluid_ranks, else 1)")
       ->check(CLI::PositiveNumber);
+  run->add_option("--solid-ranks", o.solid_ranks,
+                  "MPI ranks of the solid (a solid-only scene; default: the scene's launcher.solid_ranks, else 1)")
+      ->check(CLI::PositiveNumber);
   run->add_flag("--quiet", o.quiet, "no progress line");
   run->add_option("--restart", o.restart,
                   "resume the run in this run directory from its newest complete checkpoint set (the scene may "

@@ -55,6 +55,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
                         coupler = l->get<std::string>("coupler", "");
       const int ranks = l->get<int>("fluid_ranks", 0, config::int_at_least(1));
       if (eff.fluid_ranks == 0) eff.fluid_ranks = ranks;
+      const int solid_ranks = l->get<int>("solid_ranks", 0, config::int_at_least(1));
+      if (eff.solid_ranks == 0) eff.solid_ranks = solid_ranks;
       if (eff.fluid_cmd.empty()) eff.fluid_cmd = expand(fluid);
       if (eff.solid_cmd.empty()) eff.solid_cmd = expand(solid);
       if (eff.coupler_cmd.empty()) eff.coupler_cmd = expand(coupler);
@@ -70,6 +72,14 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
         "cosim: {} fluid ranks: a {} run has one fluid rank for now (the coupler serves one fluid process); "
         "a fluid-only scene runs on several\n",
         eff.fluid_ranks, kind_name(plan.kind));
+    return std::nullopt;
+  }
+  if (eff.solid_ranks == 0) eff.solid_ranks = 1;
+  if (eff.solid_ranks > 1 && plan.kind != RunKind::SolidOnly) {
+    std::cerr << fmt::format(
+        "cosim: {} solid ranks: a {} run has one solid rank for now (the coupler serves one solid process); "
+        "a solid-only scene runs on several\n",
+        eff.solid_ranks, kind_name(plan.kind));
     return std::nullopt;
   }
   for (const auto& [what, cmd] : {std::pair<const char*, const std::string&>{"the fluid command", eff.fluid_cmd},

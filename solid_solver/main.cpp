@@ -5,6 +5,7 @@
 
 int main(int argc, char** argv) {
   cosim::app::prefer_passive_waiting(argv);
+  cosim::parallel::MpiSession mpi(&argc, &argv);  // MPI when a launcher started this process
   cosim::app::RunOptions opt;
   if (auto rc = cosim::app::parse_command_line(argc, argv, "solid_solver",
                                                "explicit Lagrange hydro FEM with strength (standalone run)",
@@ -12,8 +13,10 @@ int main(int argc, char** argv) {
                                                "  solid_solver configs/solid_sedov_lulesh.yaml --out runs/sedov_30 "
                                                "--set 'solid.mesh.cells=[30,30,30]'\n"
                                                "  cosim run configs/shock_panel_2d.yaml     coupled to the fluid "
-                                               "(cosim starts solid_solver)",
+                                               "(cosim starts solid_solver)\n"
+                                               "  mpirun -np 4 solid_solver configs/solid_sedov_lulesh.yaml --out "
+                                               "runs/sedov   the mesh split over 4 ranks",
                                                opt))
     return *rc;
-  return cosim::solid::run_solid(opt);
+  return cosim::solid::run_solid(opt, mpi);
 }

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "solid_solver/core/simulation.h"
@@ -13,6 +14,7 @@ struct RunRecord {
   std::string status = "running", error;
   double wall = 0;
   EnergyBudget start;
+  std::optional<EnergyBudget> end;                  // totals over the ranks (else sim.energy())
   nlohmann::json extra = nlohmann::json::object();  // more top-level entries (e.g. "coupling")
 };
 

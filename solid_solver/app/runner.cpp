@@ -46,7 +46,7 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   j["bytes_per_element"] = sim.bytes_per_element();
   j["threads"] = omp_get_max_threads();
   j["omp_wait_policy"] = std::getenv("OMP_WAIT_POLICY") ? std::getenv("OMP_WAIT_POLICY") : "runtime default";
-  const EnergyBudget e = sim.energy();
+  const EnergyBudget e = rec.end ? *rec.end : sim.energy();
   const double e0 = rec.start.total();
   j["energy"] = {{"start", energy_json(rec.start)},
                  {"end", energy_json(e)},
@@ -93,8 +93,10 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
   return r;
 }
 
-int run_solid(const RunOptions& opt) {
-  if (opt.check) {  // the scene and its mesh as a run sets them up, nothing written
+int run_solid(const RunOptions& opt, const parallel::MpiSession& mpi) {
+  if (opt.check) {
+    // The scene and its mesh as a run sets them up, nothing written; one plan line (rank 0).
+    if (mpi.rank() != 0) return 0;
     auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
     if (!loaded) return 2;
     try {
@@ -118,72 +120,16 @@ int run_solid(const RunOptions& opt) {
     }
     return 0;
   }
-  if (opt.coupled()) return run_solid_coupled(opt);
-  if (!opt.restart.empty()) {
-    spdlog::error(
-        "--restart {}: a standalone solid run has no checkpoints (they are written in coupled runs: "
-        "coupling.checkpoint)",
-        opt.restart.string());
+  if (opt.coupled()) {
+    if (mpi.size() == 1) return run_solid_coupled(opt);
+    if (mpi.rank() == 0)
+      spdlog::error(
+          "{}: a coupled solid runs on one rank for now ({} ranks started): start solid_solver without mpirun "
+          "(cosim run: leave --solid-ranks and launcher.solid_ranks out)",
+          opt.scene_name(), mpi.size());
     return 2;
   }
-  SolidRun run = prepare_solid_run(opt);
-  if (!run.sim) return run.exit_code;
-  const SolidScene& scene = run.scene;
-  std::unique_ptr<Simulation>& sim = run.sim;
-  spdlog::info("{}: {}D, {} elements, {} nodes, {} block(s), {} thread(s)", scene.name, scene.dim,
-               sim->mesh().num_elements, sim->mesh().num_nodes, scene.blocks.size(), omp_get_max_threads());
-
-  app::install_interrupt_handlers();
-  io::SnapshotSeries series(opt.out_dir, "solid");
-  BlockHistory history(opt.out_dir);
-  RunRecord rec;
-  rec.start = sim->energy();
-  // The time loop sees the simulation through this adapter: a block-history row every history_every steps.
-  struct WithHistory {
-    Simulation& sim;
-    BlockHistory& history;
-    int every;
-    double stable_dt() const { return sim.stable_dt(); }
-    std::string limiting_step() const { return sim.limiting_step(); }
-    double time() const { return sim.time(); }
-    long steps() const { return sim.steps(); }
-    void advance(double dt) {
-      sim.advance(dt);
-      if (every > 0 && sim.steps() % every == 0) app::as_io("the block history", [&] { history.record(sim); });
-    }
-  } stepped{*sim, history, scene.history_every};
-  app::DriveOptions drive_opt{scene.output_times,
-                              scene.t_end,
-                              scene.max_steps,
-                              scene.numerics.dt_min,
-                              static_cast<double>(sim->mesh().num_elements),
-                              "Mzone-cycles/s",
-                              opt.quiet};
-  const app::DriveResult res = app::drive(stepped, drive_opt, [&] {
-    if (scene.write_snapshots) write_snapshot(series, *sim);
-    history.record(*sim);
-  });
-  rec.status = res.status;
-  rec.error = res.error;
-  rec.wall = res.wall;
-  const int code = res.code;
-  try {
-    write_summary(opt.out_dir, *sim, rec);
-  } catch (const std::exception& e) {
-    spdlog::error("cannot write summary.json: {}", e.what());
-    return code ? code : 4;
-  }
-  if (code == 0) {
-    const EnergyBudget e = sim->energy();
-    spdlog::info(
-        "done: t = {:.6g} in {} steps, {:.2f} s wall, {:.3g} Mzone-cycles/s, energy balance error {:.3g} "
-        "(relative), {} snapshot(s) in {}",
-        sim->time(), sim->steps(), rec.wall,
-        rec.wall > 0 ? 1e-6 * sim->steps() * sim->mesh().num_elements / rec.wall : 0.0,
-        rec.start.total() != 0 ? (e.total() - rec.start.total() - e.sources()) / std::abs(rec.start.total()) : 0.0,
-        series.count(), opt.out_dir.string());
-  }
-  return code;
+  return run_solid_ranks(opt, mpi);
 }
 
 }  // namespace cosim::solid

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "common/app/run_options.h"
+#include "common/parallel/mpi/cart_comm.h"
 #include "solid_solver/core/simulation.h"
 
 namespace cosim::solid {
@@ -12,8 +13,12 @@ using app::RunOptions;
 
 // Exit codes (as fluid_solver): 0 success, 2 bad input, 3 numerical failure, 4 I/O failure, 130 interrupted.
 // With opt.coupler set, run_solid is the coupled run (coupled_runner.cpp; exit code 5: coupling failure).
-int run_solid(const RunOptions& opt);
+// A standalone run is run_solid_ranks (one rank without a launcher).
+int run_solid(const RunOptions& opt, const parallel::MpiSession& mpi);
 int run_solid_coupled(const RunOptions& opt);
+// The standalone run over the ranks of an MPI launcher, or alone (rank_runner.cpp; docs/parallel.md, "The solid on
+// many ranks"); solid.checkpoint sets and --restart from them on any rank count.
+int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi);
 
 // The first steps of every solid run: scene, threads, output directory, simulation. On failure (logged)
 // sim is null and exit_code says why (2 bad input, 3 numerical failure, 4 I/O).

@@ -141,22 +141,40 @@ RigidBody make_rigid_body(const Mesh& m, int b, State& st, std::vector<int>& rig
   return rb;
 }
 
-void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke, double& wb) {
+void rigid_node_forces(const RigidBody& rb, const Mesh& m, const State& st, const int* owner, int rank, double* f) {
   const int D = m.dim;
   const int* off = m.node_corner_offset.data();
   const int* corners = m.node_corners.data();
-  // Net force and torque about the centre of mass at t^n: corner forces of the neighbouring elements (those of
-  // the body's own elements are zero) and external loads.
-  double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
-  for (int n : rb.nodes) {
-    double f[3] = {0, 0, 0}, r[3] = {0, 0, 0}, rxf[3];
+  for (std::size_t i = 0; i < rb.nodes.size(); ++i) {
+    const int n = rb.nodes[i];
+    double* fi = f + 3 * i;
+    fi[0] = fi[1] = fi[2] = 0.0;
+    if (owner && owner[n] != rank) continue;
     for (int k = off[n]; k < off[n + 1]; ++k) {
       const int c = corners[k];
       const double* fc = st.fc.data() + static_cast<std::ptrdiff_t>(c) * D;  // corner c = z * N + a
-      for (int d = 0; d < D; ++d) f[d] += fc[d];
+      for (int d = 0; d < D; ++d) fi[d] += fc[d];
     }
     if (st.bc_mask[n] & kBcLoaded)
-      for (int d = 0; d < D; ++d) f[d] += st.fext[static_cast<std::size_t>(n) * D + d];
+      for (int d = 0; d < D; ++d) fi[d] += st.fext[static_cast<std::size_t>(n) * D + d];
+  }
+}
+
+void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke, double& wb) {
+  std::vector<double> f(3 * rb.nodes.size());
+  rigid_node_forces(rb, m, st, nullptr, 0, f.data());
+  advance_rigid_body(rb, m, st, f.data(), dt, t_half, ke, wb);
+}
+
+void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, const double* node_force, double dt, double t_half,
+                        double& ke, double& wb) {
+  const int D = m.dim;
+  // Net force and torque about the centre of mass at t^n: corner forces of the neighbouring elements (those of
+  // the body's own elements are zero) and external loads, summed in the body's node order.
+  double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < rb.nodes.size(); ++i) {
+    const int n = rb.nodes[i];
+    double f[3] = {node_force[3 * i], node_force[3 * i + 1], node_force[3 * i + 2]}, r[3] = {0, 0, 0}, rxf[3];
     for (int d = 0; d < D; ++d) {
       F[d] += f[d];
       r[d] = st.x[static_cast<std::size_t>(n) * D + d] - rb.X[d];

@@ -52,6 +52,14 @@ RigidBody make_rigid_body(const Mesh& m, int b, State& st, std::vector<int>& rig
 // One leapfrog step of the body (see the header comment). t_half = t^{n+1/2} for ramps. Adds the kinetic
 // energy of its nodes at t^{n+1/2} to ke and the work of loads and constraint reactions to wb.
 void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, double dt, double t_half, double& ke, double& wb);
+// The same with the net force on each of its nodes given (3 per node, rb.nodes order; rigid_node_forces): a body
+// whose nodes are owned by several ranks gets every node's force from its owner and sums them in that order.
+void advance_rigid_body(RigidBody& rb, const Mesh& m, State& st, const double* node_force, double dt, double t_half,
+                        double& ke, double& wb);
+// The net force on each node of the body (3 per node, rb.nodes order): the corner forces of its elements in the
+// node's corner order plus its external load. With owner (per mesh node), only the nodes owned by `rank`; the
+// others get zero.
+void rigid_node_forces(const RigidBody& rb, const Mesh& m, const State& st, const int* owner, int rank, double* f);
 
 // Kinetic energy of the body: 1/2 M V^2 + 1/2 L . omega [J] (for tests).
 double rigid_body_kinetic_energy(const RigidBody& rb, int dim);

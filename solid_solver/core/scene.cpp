@@ -187,7 +187,8 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
 SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
   SolidScene s;
   Node sn = root.child("solid");
-  known_keys(sn, {"mesh", "blocks", "boundaries", "initial", "numerics", "ale", "time", "output", "threads"});
+  known_keys(sn,
+             {"mesh", "blocks", "boundaries", "initial", "numerics", "ale", "time", "output", "checkpoint", "threads"});
 
   Node mesh = sn.child("mesh");
   known_keys(mesh, {"type", "cells", "lower", "upper", "regions", "file"});
@@ -370,6 +371,15 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
       s.history_every = out->get<int>("history_every", 0, config::int_at_least(0));
       out->finish();
     }
+  }
+
+  // checkpoint sets of a solid-only run (the coupler writes them in a coupled one: coupling.checkpoint)
+  if (auto ck = sn.optional_child("checkpoint")) {
+    if (coupled_end > 0)
+      sn.fail("checkpoint",
+              "no solid.checkpoint in a coupled scene (the coupler checkpoints the whole run: put it under "
+              "coupling.checkpoint)");
+    s.checkpoint = checkpoint::read_checkpoint_policy(&*ck);
   }
 
   s.threads = sn.get<int>("threads", 0, config::int_at_least(0));

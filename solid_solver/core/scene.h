@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
 #include "solid_solver/materials/material.h"
 #include "solid_solver/mesh/mesh.h"
@@ -104,6 +105,7 @@ struct SolidScene {
   bool write_snapshots = true;
   // Rows of block_history.csv also every this many steps (standalone) or coupled cycles; 0: at outputs only.
   int history_every = 0;
+  checkpoint::CheckpointPolicy checkpoint;  // solid.checkpoint: sets of a standalone run (any rank count)
   int threads = 0;
 };
 

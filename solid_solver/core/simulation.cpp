@@ -261,7 +261,9 @@ void Simulation::apply_boundary_conditions() {
 void Simulation::nodal_update(double dt) {
   if (!iface_.empty()) apply_interface_velocities();
   if (!loads_.empty() || !face_p_.empty()) apply_pressure_loads();
-  const int nn = mesh_.num_nodes;
+  // The nodes updated here: all of them, or with rank links the nodes this rank owns.
+  const int* own = links_ ? links_->part().owned_nodes.data() : nullptr;
+  const int nn = links_ ? static_cast<int>(links_->part().owned_nodes.size()) : mesh_.num_nodes;
   const int* off = mesh_.node_corner_offset.data();
   const int* corners = mesh_.node_corners.data();
   const double* fc = st_.fc.data();
@@ -279,13 +281,16 @@ void Simulation::nodal_update(double dt) {
   auto pass = [&](auto dim) {
     constexpr int D = decltype(dim)::value;
 #pragma omp parallel for schedule(static) reduction(+ : ke, wb) if (nn > 4096)
-    for (int n = 0; n < nn; ++n) {
+    for (int i = 0; i < nn; ++i) {
+      const int n = own ? own[i] : i;
       // The corners of a node lie in up to 2^D element rows far apart in memory, more streams than the
       // hardware prefetcher follows: ask for those of a node a few ahead.
       constexpr int ahead = 8;
-      if (n + ahead < nn)
-        for (int k = off[n + ahead]; k < off[n + ahead + 1]; ++k)
+      if (i + ahead < nn) {
+        const int na = own ? own[i + ahead] : i + ahead;
+        for (int k = off[na]; k < off[na + 1]; ++k)
           __builtin_prefetch(fc + static_cast<std::ptrdiff_t>(corners[k]) * D);
+      }
       double F[3] = {0, 0, 0};
       for (int k = off[n]; k < off[n + 1]; ++k) {
         const double* f = fc + static_cast<std::ptrdiff_t>(corners[k]) * D;  // corner c = z N + a
@@ -318,9 +323,38 @@ void Simulation::nodal_update(double dt) {
   };
   if (mesh_.dim == 2) pass(std::integral_constant<int, 2>{});
   else pass(std::integral_constant<int, 3>{});
-  for (auto& rb : rigid_) advance_rigid_body(rb, mesh_, st_, dt, th, ke, wb);
+  advance_rigid_bodies(dt, th, ke, wb);
   ke_ = ke;
   wb_ += wb;
+  if (links_) {  // the ghost nodes' new positions and velocities from their owners
+    double* arrays[3] = {st_.x.data(), st_.v.data(), st_.vbar.data()};
+    links_->exchange_ghost_nodes(arrays, mesh_.dim);
+  }
+}
+
+// Rigid bodies: on several ranks, each node's force comes from its owner (every corner force of an owned node is
+// computed there), then every rank moves the whole body alike, summing the forces in the body's node order; the
+// body's kinetic energy and work are counted on rank 0.
+void Simulation::advance_rigid_bodies(double dt, double t_half, double& ke, double& wb) {
+  if (!links_) {
+    for (auto& rb : rigid_) advance_rigid_body(rb, mesh_, st_, dt, t_half, ke, wb);
+    return;
+  }
+  const RankPart& part = links_->part();
+  double ke_rb = 0.0, wb_rb = 0.0;
+  std::vector<int> owner;
+  for (auto& rb : rigid_) {
+    rigid_f_.resize(3 * rb.nodes.size());
+    rigid_node_forces(rb, mesh_, st_, part.node_owner.data(), part.rank, rigid_f_.data());
+    owner.resize(rb.nodes.size());
+    for (std::size_t i = 0; i < rb.nodes.size(); ++i) owner[i] = part.node_owner[rb.nodes[i]];
+    links_->gather_owned(rigid_f_, 3, owner, true);
+    advance_rigid_body(rb, mesh_, st_, rigid_f_.data(), dt, t_half, ke_rb, wb_rb);
+  }
+  if (part.rank == 0) {
+    ke += ke_rb;
+    wb += wb_rb;
+  }
 }
 
 void Simulation::element_update(double dt) {
@@ -345,23 +379,23 @@ void Simulation::element_update(double dt) {
                     scene_.numerics.hourglass,
                     0.0,
                     Strength{}};
-  ElementPassResult R;
-  R.ie_sum = rigid_ie_;
-  for (std::size_t b = 0; b < scene_.blocks.size(); ++b) {
-    if (scene_.blocks[b].rigid) continue;  // the skip path: no stress, EOS, viscosity or hourglass work
+  // R: the elements this rank owns (all on one rank); halo: those it computes for its nodes only (their energy is
+  // counted and their failures reported by their owners).
+  ElementPassResult R, halo;
+  R.ie_sum = !links_ || links_->part().rank == 0 ? rigid_ie_ : 0.0;
+  const auto pass = [&](std::size_t b, int lo, int hi, ElementPassResult& out) {
     const MaterialModel& mat = scene_.blocks[b].material;
-    const int lo = mesh_.block_range[b][0], hi = mesh_.block_range[b][1];
     A.p_min = mat.p_min;
     A.strength = mat.strength;
     const bool str = mat.strength.enabled;
     auto run = [&](const auto& eos) {
       using E = std::decay_t<decltype(eos)>;
       if (D == 2) {
-        if (str) element_pass<2, E, true>(A, eos, lo, hi, R);
-        else element_pass<2, E, false>(A, eos, lo, hi, R);
+        if (str) element_pass<2, E, true>(A, eos, lo, hi, out);
+        else element_pass<2, E, false>(A, eos, lo, hi, out);
       } else {
-        if (str) element_pass<3, E, true>(A, eos, lo, hi, R);
-        else element_pass<3, E, false>(A, eos, lo, hi, R);
+        if (str) element_pass<3, E, true>(A, eos, lo, hi, out);
+        else element_pass<3, E, false>(A, eos, lo, hi, out);
       }
     };
     switch (mat.eos) {
@@ -369,6 +403,17 @@ void Simulation::element_update(double dt) {
       case EosKind::LinearElastic: run(mat.linear); break;
       case EosKind::MieGruneisen: run(mat.mg); break;
     }
+  };
+  if (!links_) {
+    for (std::size_t b = 0; b < scene_.blocks.size(); ++b)
+      if (!scene_.blocks[b].rigid)  // the skip path: no stress, EOS, viscosity or hourglass work
+        pass(b, mesh_.block_range[b][0], mesh_.block_range[b][1], R);
+  } else {
+    for (const RankPart::Run& r : links_->part().runs) {
+      const auto b = static_cast<std::size_t>(mesh_.element_block[r.begin]);
+      if (!scene_.blocks[b].rigid) pass(b, r.begin, r.end, r.role == kElementOwned ? R : halo);
+    }
+    R.dt_min = std::min(R.dt_min, halo.dt_min);
   }
   if (R.bad >= 0) {
     const int z = R.bad;
@@ -385,7 +430,39 @@ void Simulation::element_update(double dt) {
                     z, bn, t_ + dt, steps_ + 1, c[0], c[1], c[2], st_.ie[z], st_.p[z]));
   }
   ie_sum_ = R.ie_sum;
-  dt_elem_ = R.dt_min;
+  dt_elem_ = links_ ? links_->min_over_ranks(R.dt_min) : R.dt_min;
+}
+
+void Simulation::set_rank_links(RankLinks* links) {
+  if (links && links->part().ranks > 1 && ale_)
+    throw std::invalid_argument(
+        "ALE blocks (solid.ale.blocks) run on one rank only: start solid_solver without mpirun (or with -np 1)");
+  links_ = links;
+  if (!links_ || links_->part().rank == 0) return;
+  ie_sum_ = ke_ = wb_ = 0.0;  // rank 0 holds the totals so far
+}
+
+void Simulation::gather_state() {
+  if (!links_) return;
+  const RankPart& part = links_->part();
+  const int D = mesh_.dim, N = mesh_.npe;
+  for (std::vector<double>* a : {&st_.x, &st_.v, &st_.vbar, &st_.fext})
+    links_->gather_owned(*a, D, part.node_owner, false);
+  for (std::vector<double>* a : {&st_.vol, &st_.ie, &st_.p, &st_.q, &st_.c, &st_.eps_p, &st_.w_p})
+    links_->gather_owned(*a, 1, part.element_part, false);
+  links_->gather_owned(st_.s, 6, part.element_part, false);
+  links_->gather_owned(st_.fc, N * D, part.element_part, false);
+  // The energy sums too: rank 0 takes the totals, the others start again from zero (their sum is unchanged), so
+  // that a checkpoint of rank 0's state holds the run's totals.
+  double e[3] = {ie_sum_, ke_, wb_};
+  links_->sum_over_ranks(e);
+  if (part.rank == 0) {
+    ie_sum_ = e[0];
+    ke_ = e[1];
+    wb_ = e[2];
+  } else {
+    ie_sum_ = ke_ = wb_ = 0.0;
+  }
 }
 
 void Simulation::advance(double dt) {
@@ -413,6 +490,7 @@ std::string Simulation::limiting_step() const {
   double worst_dt = 1e300;
   for (int z = 0; z < mesh_.num_elements; ++z) {
     if (scene_.blocks[mesh_.element_block[z]].rigid) continue;
+    if (links_ && links_->part().element_role[z] != kElementOwned) continue;  // another rank's
     const double L = D == 3 ? std::cbrt(std::max(st_.vol[z], 0.0)) : std::sqrt(std::max(st_.vol[z], 0.0));
     const double rho = st_.emass[z] / std::max(st_.vol[z], 1e-300);
     const double w = st_.c[z] + std::sqrt(std::max(st_.q[z], 0.0) / rho);

@@ -14,6 +14,7 @@
 #include "solid_solver/ale/ale_mesh.h"
 #include "solid_solver/ale/remap.h"
 #include "solid_solver/core/boundary_faces.h"
+#include "solid_solver/core/rank_links.h"
 #include "solid_solver/core/rigid_body.h"
 #include "solid_solver/core/scene.h"
 #include "solid_solver/core/state.h"
@@ -55,7 +56,18 @@ class Simulation {
   const Mesh& mesh() const { return mesh_; }
   State& state() { return st_; }
   const State& state() const { return st_; }
+  // With rank links: this rank's share (its nodes and elements; rank 0 also the rigid bodies and the energy
+  // from before the links were set); the sum over the ranks is the total.
   EnergyBudget energy() const;
+  // The run on several ranks (mesh/rank_part.h): from now on this rank updates its own nodes and the elements
+  // around them, and reads the other ranks through `links` (kept, not owned). Throws std::invalid_argument for what
+  // cannot run on several ranks (ALE blocks).
+  void set_rank_links(RankLinks* links);
+  const RankLinks* rank_links() const { return links_; }
+  // With rank links (a collective call): rank 0's arrays get the state of every node and element from its owner,
+  // and its energy sums the totals, so that rank 0 holds the whole state (snapshots, checkpoints, block history).
+  // Without: nothing to do.
+  void gather_state();
   // Exterior boundary faces for the coupling protocol, refreshed from the current state (t^n; velocities
   // v^{n-1/2}). The face list is built on the first call.
   const BoundaryFaces& boundary_faces();
@@ -125,6 +137,9 @@ class Simulation {
   std::vector<double> robin_K_, robin_b_;
   double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
+  RankLinks* links_ = nullptr;
+  std::vector<double> rigid_f_;  // per rigid node, its net force (rigid_node_forces)
+  void advance_rigid_bodies(double dt, double t_half, double& ke, double& wb);
 };
 
 // Mesh for a scene: the box generator with blocks assigned by regions (later regions win; the rest belongs

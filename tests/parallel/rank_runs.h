@@ -1,5 +1,5 @@
-// Runs of fluid_solver on several ranks (mpirun, oversubscribed on this machine's cores) and the comparison of two
-// runs' snapshot series, bit for bit.
+// Runs of fluid_solver and solid_solver on several ranks (mpirun, oversubscribed on this machine's cores) and the
+// comparison of two runs' snapshot series, bit for bit.
 #pragma once
 
 #include <sys/wait.h>
@@ -47,13 +47,13 @@ inline std::string launcher(int ranks) {
   return "mpirun --allow-run-as-root --oversubscribe --bind-to none -np " + std::to_string(ranks) + " ";
 }
 
-// fluid_solver SCENE --out OUT on `ranks` ranks, one thread each, at most `limit_s` seconds.
-inline RankRun run_fluid_ranks(int ranks, const std::string& scene, const std::filesystem::path& out,
-                               const std::string& extra = "", int limit_s = 300) {
+// SOLVER (fluid_solver, solid_solver) SCENE --out OUT on `ranks` ranks, one thread each, at most `limit_s` seconds.
+inline RankRun run_solver_ranks(const std::string& solver, int ranks, const std::string& scene,
+                                const std::filesystem::path& out, const std::string& extra, int limit_s) {
   const std::filesystem::path log = out.string() + ".log";
   std::filesystem::create_directories(out.parent_path());
   const std::string cmd = "timeout -s KILL " + std::to_string(limit_s) + " " + launcher(ranks) +
-                          std::string(COSIM_BINARY_DIR) + "/bin/fluid_solver " + scene + " --out " + out.string() +
+                          std::string(COSIM_BINARY_DIR) + "/bin/" + solver + " " + scene + " --out " + out.string() +
                           " --quiet --threads 1 " + extra + " > " + log.string() + " 2>&1";
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(cmd.c_str());
@@ -64,24 +64,36 @@ inline RankRun run_fluid_ranks(int ranks, const std::string& scene, const std::f
   return r;
 }
 
+inline RankRun run_fluid_ranks(int ranks, const std::string& scene, const std::filesystem::path& out,
+                               const std::string& extra = "", int limit_s = 300) {
+  return run_solver_ranks("fluid_solver", ranks, scene, out, extra, limit_s);
+}
+
+inline RankRun run_solid_ranks(int ranks, const std::string& scene, const std::filesystem::path& out,
+                               const std::string& extra = "", int limit_s = 300) {
+  return run_solver_ranks("solid_solver", ranks, scene, out, extra, limit_s);
+}
+
 inline nlohmann::json summary_of(const std::filesystem::path& out) {
   return nlohmann::json::parse(read_text(out / "summary.json"));
 }
 
-// The snapshot files of a run, in order.
-inline std::vector<std::filesystem::path> snapshots_of(const std::filesystem::path& out) {
+// The snapshot files of a run (prefix: "fluid_" or "solid_"), in order.
+inline std::vector<std::filesystem::path> snapshots_of(const std::filesystem::path& out,
+                                                       const std::string& prefix = "fluid_") {
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(out)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind("fluid_", 0) == 0 && e.path().extension() == ".h5") files.push_back(e.path());
+    if (name.rfind(prefix, 0) == 0 && e.path().extension() == ".h5") files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
   return files;
 }
 
 // "" when the two series have the same files, times, fields and values bit for bit; else the first difference.
-inline std::string series_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
-  const auto fa = snapshots_of(a), fb = snapshots_of(b);
+inline std::string series_difference(const std::filesystem::path& a, const std::filesystem::path& b,
+                                     const std::string& prefix = "fluid_") {
+  const auto fa = snapshots_of(a, prefix), fb = snapshots_of(b, prefix);
   if (fa.empty()) return "no snapshots in " + a.string();
   if (fa.size() != fb.size())
     return std::to_string(fa.size()) + " snapshots in " + a.string() + ", " + std::to_string(fb.size()) + " in " +

@@ -1,5 +1,7 @@
 #include "common/parallel/mpi/cart_comm.h"
 
+#include "common/parallel/mpi/passive_wait.h"
+
 #include <hdf5.h>
 #include <mpi.h>
 
@@ -16,6 +18,10 @@ namespace cosim::parallel {
 namespace {
 
 MPI_Comm& as_comm(void* p) { return *static_cast<MPI_Comm*>(p); }
+
+}  // namespace
+
+namespace detail {
 
 // Waits for the requests, testing them and sleeping between tests once a few microseconds have passed: a rank that
 // waits leaves its core to the ranks it waits for (oversubscribed), at a cost of at most the longest sleep (100 us)
@@ -44,7 +50,9 @@ void wait_passively(int count, MPI_Request* requests) {
   }
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::wait_passively;
 
 bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
