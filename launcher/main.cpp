@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   chk->add_option("--fluid-ranks", co.fluid_ranks,
                   "the fluid's MPI ranks, as cosim run --fluid-ranks: the plan states their layout, cells and memory")
       ->check(CLI::PositiveNumber);
+  chk->add_option("--solid-ranks", co.solid_ranks,
+                  "the solid's MPI ranks, as cosim run --solid-ranks: the plan states their parts, elements and memory")
+      ->check(CLI::PositiveNumber);
   chk->footer(
       "Examples:\n"
       "  cosim check configs/shock_panel_2d.yaml           every section as its program reads it; exit 0 or 2\n"

@@ -67,6 +67,7 @@ std::optional<SceneRefusal> check_scene(const SceneCheck& c, std::vector<std::st
   for (const std::string& p : programs) {
     std::vector<std::string> argv{(c.bin_dir / p).string(), c.scene, "--check", "--quiet", "--plan-facts"};
     if (p == "fluid_solver" && c.fluid_ranks > 1) argv.insert(argv.end(), {"--ranks", std::to_string(c.fluid_ranks)});
+    if (p == "solid_solver" && c.solid_ranks > 1) argv.insert(argv.end(), {"--ranks", std::to_string(c.solid_ranks)});
     for (const auto& o : c.overrides) argv.insert(argv.end(), {"--set", o});
     std::string out;
     const int rc = run_captured(argv, out, 120.0);

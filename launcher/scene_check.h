@@ -26,6 +26,7 @@ struct SceneCheck {
   bool check_fluid = true, check_solid = true, check_coupler = true;  // false: a replaced program (or none)
   bool solid_only = false;                                            // a scene without fluid:
   int fluid_ranks = 1;  // the fluid's MPI ranks: its plan states their layout and share (fluid_solver --ranks)
+  int solid_ranks = 1;  // the solid's: its plan states their parts (solid_solver --ranks)
 };
 
 // The first program that refuses the scene, with its message; nothing when all accept it. `plan` gets what each

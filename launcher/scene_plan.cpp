@@ -101,7 +101,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
                       plan.has_solid() && eff.solid_cmd.empty(),
                       eff.coupler_cmd.empty(),
                       plan.kind == RunKind::SolidOnly,
-                      eff.fluid_ranks};
+                      eff.fluid_ranks,
+                      eff.solid_ranks};
   if (const auto refusal = check_scene(sc, &plan.lines, &plan.facts)) {
     std::cerr << fmt::format("cosim: {} refuses the scene (nothing was started):\n{}\n", refusal->program,
                              refusal->message);

@@ -19,6 +19,7 @@
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/util/progress.h"
+#include "solid_solver/app/rank_plan.h"
 #include "solid_solver/app/run_summary.h"
 #include "solid_solver/io/block_history.h"
 #include "solid_solver/io/solid_output.h"
@@ -104,13 +105,16 @@ int run_solid(const RunOptions& opt, const parallel::MpiSession& mpi) {
       const Mesh& m = sim.mesh();
       // The plan line cosim check prints.
       const double dt = sim.stable_dt();
+      nlohmann::json facts = {{"max_subcycles", loaded->numerics.max_subcycles}};
+      const std::string ranks_line =  // the parts on --ranks N, refused as the run would refuse them
+          opt.check_ranks > 1 ? solid_rank_plan(*loaded, m, opt.check_ranks, sim.bytes_per_element(), facts) : "";
       std::cout << fmt::format("solid: {}D, {} elements, {} nodes, {} block(s), state about {}, {}\n", m.dim,
                                m.num_elements, m.num_nodes, loaded->blocks.size(),
                                util::format_bytes(sim.bytes_per_element() * m.num_elements),
                                dt < 1e100 ? fmt::format("first stable step {:.3g} s", dt)
                                           : std::string("rigid bodies only (no step limit of its own)"));
+      if (!ranks_line.empty()) std::cout << "solid " << ranks_line << "\n";
       if (opt.plan_facts) {
-        nlohmann::json facts = {{"max_subcycles", loaded->numerics.max_subcycles}};
         if (dt < 1e100) facts["first_step"] = dt;
         app::print_plan_facts(facts);
       }

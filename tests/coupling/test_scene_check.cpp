@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <fstream>
 #include <utility>
 
@@ -112,6 +113,30 @@ TEST(SceneCheck, ThePlanStatesTheLayoutOfTheFluidsRanks) {
   std::tie(rc, log) = run_shell(dir, check);
   EXPECT_EQ(rc, 0) << log;
   EXPECT_EQ(log.find("ranks:"), std::string::npos) << log;
+}
+
+// cosim check --solid-ranks N states the METIS parts the solid's ranks will compute (owned elements per rank near
+// an equal share of the 27000 Sedov elements, the halo elements and ghost nodes a rank reads), and refuses what the
+// ranks would refuse: the conforming panel's ALE air runs on one rank only.
+TEST(SceneCheck, ThePlanStatesThePartsOfTheSolidsRanks) {
+  const fs::path dir = test_dir("check_plan_solid_ranks");
+  const fs::path configs = fs::path(COSIM_SOURCE_DIR) / "configs";
+  auto [rc, log] = run_shell(dir, bin("cosim").string() + " check " + (configs / "solid_sedov_lulesh.yaml").string() +
+                                      " --solid-ranks 3 --set 'solid.mesh.cells=[12, 12, 12]'");
+  EXPECT_EQ(rc, 0) << log;
+  const std::size_t at = log.find("solid ranks: 3 (METIS parts, ");
+  ASSERT_NE(at, std::string::npos) << log;
+  int fewest = 0, most = 0;
+  const std::size_t owned = log.find("owned elements ", at);
+  ASSERT_NE(owned, std::string::npos) << log;
+  ASSERT_EQ(std::sscanf(log.c_str() + owned, "owned elements %d to %d per rank", &fewest, &most), 2) << log;
+  EXPECT_LE(fewest, 576);  // 1728 / 3
+  EXPECT_GE(most, 576);
+  EXPECT_LE(most, 576 * 1.05) << "METIS parts within 5% of an equal share";
+  std::tie(rc, log) = run_shell(dir, bin("cosim").string() + " check " +
+                                         (configs / "shock_panel_2d_conforming.yaml").string() + " --solid-ranks 2");
+  EXPECT_EQ(rc, 2) << log;
+  EXPECT_NE(log.find("ALE blocks (solid.ale.blocks) run on one rank only"), std::string::npos) << log;
 }
 
 // The coupled cycle: the blast on the steel panel has the fluid's first step 3.64e-6 s and the solid's stable step
