@@ -226,14 +226,6 @@ int run(const LaunchOptions& opt) {
   const auto plan = read_plan(opt);
   if (!plan) return 2;
   const bool coupled = plan->coupled();
-  if (plan->kind == RunKind::SolidOnly && !opt.restart.empty()) {
-    std::cerr << fmt::format(
-        "cosim: --restart: {} is a solid-only run, which writes no checkpoints through cosim (with "
-        "solid.checkpoint, restart solid_solver itself: solid_solver SCENE --out RUN/solid --restart "
-        "RUN/solid/checkpoints/NNNNNNNNN)\n",
-        opt.scene);
-    return 2;
-  }
   const std::string name = plan->name;
   const LaunchOptions eff = plan->eff;
   if (!opt.restart.empty() && !opt.out.empty() && fs::absolute(opt.out) != fs::absolute(opt.restart)) {
@@ -324,8 +316,8 @@ int run(const LaunchOptions& opt) {
   const auto with_common = [&](std::vector<std::string> argv, const char* sub, bool client) {
     argv.push_back(scene.string());
     argv.insert(argv.end(), {"--out", (fs::absolute(out) / sub).string()});
-    // The time driver (the coupler, or the fluid alone) writes the checkpoint sets; every process restarts.
-    if (!client || plan->kind == RunKind::FluidOnly) argv.insert(argv.end(), {"--checkpoints", checkpoints.string()});
+    // The time driver (the coupler, or the solver alone) writes the checkpoint sets; every process restarts.
+    if (!client || !coupled) argv.insert(argv.end(), {"--checkpoints", checkpoints.string()});
     if (!restart_set.empty()) argv.insert(argv.end(), {"--restart", restart_set.string()});
     // The token goes by the environment ($COSIM_TOKEN, set below): a command line is world-readable.
     if (coupled) { argv.insert(argv.end(), {client ? "--coupler" : "--endpoint", endpoint}); }

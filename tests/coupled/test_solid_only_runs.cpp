@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "coupled_test_util.h"
 #include "run_compare.h"
 
@@ -51,11 +52,32 @@ TEST(SolidOnlyRuns, CosimCheckStatesASolidOnlyRunAndRefusesWhatCannotBeOne) {
   const auto [nf, nf_out] = check((dir / "no_fluid.yaml").string(), "no_fluid.txt");
   EXPECT_EQ(nf, 2) << nf_out;
   EXPECT_NE(nf_out.find("no coupling: section in a scene without fluid:"), std::string::npos) << nf_out;
-  // cosim writes no checkpoints of a solid-only run: a restart of one is refused before anything starts.
+}
+
+// A solid-only run with solid.checkpoint writes its sets into RUN/checkpoints like a fluid-only run, and
+// `cosim run --restart RUN [--from CYCLE]` continues it from a set (here the older of the two), ending as the
+// uninterrupted run bit for bit (also on another rank count: the sets hold the whole state).
+TEST(SolidOnlyRuns, ACheckpointedSolidOnlyRunRestartsThroughCosim) {
+  const std::string args = "--set solid.time.end=0.05 --set 'solid.checkpoint={interval: 0.012, keep: 2}'";
+  const fs::path whole = run_dir("solid_only_whole"), cut = run_dir("solid_only_cut");
+  ASSERT_EQ(cosim_run(scene_file("solid_piston_1d"), whole, args), 0) << run_logs(whole);
+  ASSERT_EQ(cosim_run(scene_file("solid_piston_1d"), cut, args), 0) << run_logs(cut);
+  const auto sets = cosim::checkpoint::complete_sets(cut / "checkpoints");
+  ASSERT_EQ(sets.size(), 2u) << "keep: 2";
+  // The last snapshot removed, as if the run had been killed before it: the restart must write it again.
+  fs::path last;
+  for (const auto& e : fs::directory_iterator(cut / "solid"))
+    if (e.path().extension() == ".h5" && (last.empty() || e.path().filename() > last.filename())) last = e.path();
+  ASSERT_FALSE(last.empty());
+  fs::remove(last);
   const std::string restart = bin("cosim").string() + " run " + scene_file("solid_piston_1d").string() + " --restart " +
-                              dir.string() + " > " + (dir / "restart.txt").string() + " 2>&1";
-  EXPECT_EQ(WEXITSTATUS(std::system(restart.c_str())), 2);
-  EXPECT_NE(read_text(dir / "restart.txt").find("a solid-only run, which writes no checkpoints through cosim"),
-            std::string::npos)
-      << read_text(dir / "restart.txt");
+                              cut.string() + " --from " + std::to_string(sets.front().cycle) +
+                              " --quiet --solid-ranks 2 " + args + " > " + cut.string() + ".restart.log 2>&1";
+  ASSERT_EQ(WEXITSTATUS(std::system(restart.c_str())), 0) << read_text(fs::path(cut.string() + ".restart.log"));
+  EXPECT_NE(read_text(fs::path(cut.string() + ".restart.log")).find("restarting from the checkpoint of cycle"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(last)) << last;
+  const nlohmann::json history = nlohmann::json::parse(read_text(cut / "run_history.json"));
+  EXPECT_EQ(history["attempts"].size(), 2u) << history.dump(2);
+  expect_same_runs(whole, cut, 5);
 }
