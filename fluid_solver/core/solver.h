@@ -112,7 +112,7 @@ class Solver final : public FluidSimulation {
       const double vol = g_.cell_volume();
       for (std::size_t c = 0; c < emb_.kind.size(); ++c) {
         const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
-        if (change != 0)
+        if (change != 0 && g_.owns(c))  // a block counts its own cells (another block counts its ghost layers')
           for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
       }
     }
@@ -130,6 +130,14 @@ class Solver final : public FluidSimulation {
       });
     if (emb_.active && emb_.kind.size() != g_.total)
       throw std::invalid_argument("embedded state: kind array does not match the grid");
+    if (emb_.far_cells > 0 && !links_)
+      throw std::invalid_argument("embedded state: cells beyond the grid's ghost layers without other blocks");
+    if (W_.cells < g_.total + emb_.far_cells) {  // room for the far cells' primitives after the padded cells
+      FieldArray w;
+      w.resize(nprim_, g_.total + emb_.far_cells + emb_.far_cells / 2);
+      for (int v = 0; v < nprim_; ++v) std::copy(W_.var(v), W_.var(v) + g_.total, w.var(v));
+      W_ = std::move(w);
+    }
   }
   const EmbeddedState& embedded() const override { return emb_; }
 
@@ -378,6 +386,7 @@ class Solver final : public FluidSimulation {
 
   // solver_stage.h: one Runge-Kutta stage, the update of a finished row, the deferred primitives.
   void stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt = 0.0);
+  void exchange_far_cells();
   void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives,
                   double exchange_dt);
   template <int D>
@@ -551,6 +560,7 @@ class Solver final : public FluidSimulation {
   // embedded_mass_account(): through the walls since the start and this step, with the cells covered or uncovered.
   std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
+  std::vector<double> far_send_, far_recv_;         // far cells' primitives to and from the other blocks
   bool wall_second_order_ = true;
   bool profiling_ = false;  // per-pass clocks (set_pass_profiling)
   // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
+#include <string_view>
 
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/output_resume.h"
@@ -34,6 +37,53 @@ std::vector<PhaseTotals> summed(std::vector<PhaseTotals> t, const parallel::Cart
 
 }  // namespace
 
+std::string merge_segment_rows(const std::vector<std::string>& parts) {
+  std::string header;
+  struct Row {
+    std::array<long, 3> kji;
+    std::string_view text;
+  };
+  std::vector<Row> rows;
+  for (const std::string& part : parts) {
+    std::size_t at = part.find('\n');
+    if (at == std::string::npos) continue;
+    if (header.empty()) header = part.substr(0, at + 1);
+    for (++at; at < part.size();) {
+      const std::size_t end = std::min(part.find('\n', at), part.size() - 1) + 1;
+      const std::string_view line(part.data() + at, end - at);
+      long ijk[3] = {0, 0, 0};
+      std::size_t pos = 0;
+      for (long& v : ijk) {  // the first three columns: i, j, k
+        const std::size_t comma = line.find(',', pos);
+        v = std::stol(std::string(line.substr(pos, comma - pos)));
+        pos = comma + 1;
+      }
+      rows.push_back({{ijk[2], ijk[1], ijk[0]}, line});
+      at = end;
+    }
+  }
+  // By cell in the mesh's order; a cell's rows come from one block, in its order (stable).
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.kji < b.kji; });
+  std::string out = header;
+  for (const Row& r : rows) out += r.text;
+  return out;
+}
+
+std::vector<EmbeddedMassAccount> embedded_mass_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  std::vector<EmbeddedMassAccount> acc = sim.embedded_mass_account();
+  std::vector<double> flat;
+  for (const auto& a : acc) flat.insert(flat.end(), {a.walls, a.cells});
+  comm.sum(flat);
+  for (std::size_t k = 0; k < acc.size(); ++k) acc[k] = {flat[2 * k], flat[2 * k + 1]};
+  return acc;
+}
+
+double embedded_cells_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  std::vector<double> n{static_cast<double>(sim.embedded().own_ghosts)};
+  comm.sum(n);
+  return n[0];
+}
+
 std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
   return summed(sim.totals(), comm);
 }
@@ -58,6 +108,12 @@ void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulatio
   const std::unique_ptr<io::CollectiveWrite> together = comm.collective_write();
   const std::filesystem::path h5 = series.write_part(sim.time(), sim.steps(), g, part, fields.views, *together);
   if (index == 0 && comm.rank() == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
+  const std::string segments = sim.interface_segments_csv();  // this block's cells' rows
+  if (!comm.any(!segments.empty())) return;
+  const std::vector<std::string> parts = comm.gather_text(segments);
+  if (comm.rank() == 0)
+    io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index),
+                              merge_segment_rows(parts));
 }
 
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
