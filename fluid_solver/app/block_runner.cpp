@@ -81,6 +81,13 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
                   opt.scene_name(), setup_error);
   if (comm->any(!setup_error.empty())) return 2;
+  try {  // the embedded bodies' geometry needs the other blocks (they agree on a failure: every rank ends with 2)
+    sim->start_on_blocks();
+  } catch (const std::exception& e) {
+    spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
+                  opt.scene_name(), e.what());
+    return 2;
+  }
   if (root && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
     if (comm->size() == 1) return 4;
     parallel::MpiSession::abort_all(4);

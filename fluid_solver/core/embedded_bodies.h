@@ -119,8 +119,8 @@ std::string segments_csv(const embedded::EmbeddedGeometry<DIM>& geo, const Grid<
 template <int DIM>
 class EmbeddedBodiesRun final : public FluidSimulation {
  public:
-  // On a block of a split mesh the geometry is built over the block and its margin (embedded_block.h), once the
-  // block's links to the others are known (set_block_links): its far cells come from them.
+  // On a block of a split mesh the geometry is built over the block and its margin (embedded_block.h) when every
+  // block has its links to the others (start_on_blocks): its far cells come from them.
   EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
       : inner_(std::move(inner)),
         block_(s.cells, s.lower, s.upper, s.block.first, s.block.whole() ? s.cells : s.block.count),
@@ -161,6 +161,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   void set_block_links(BlockLinks* links) override {
     inner_->set_block_links(links);
     links_ = links;
+  }
+  void start_on_blocks() override {
     if (!block_.whole()) update();
   }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
@@ -170,13 +172,21 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   // The bodies move with the flow's steps: their vertices belong to the state.
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);
-    std::vector<double> x;
-    for (const auto& v : surface_.vertices) x.insert(x.end(), v.begin(), v.end());
-    w.put("fluid.embedded_vertices", x);
+    w.put("fluid.embedded_vertices", body_state());
   }
   void restore_state(const checkpoint::PartReader& r) override {
     inner_->restore_state(r);
-    const std::vector<double> x = r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size());
+    set_body_state(r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size()));
+  }
+  std::vector<double> body_state() const override {
+    std::vector<double> x;
+    for (const auto& v : surface_.vertices) x.insert(x.end(), v.begin(), v.end());
+    return x;
+  }
+  void set_body_state(const std::vector<double>& x) override {
+    if (x.size() != 3 * surface_.vertices.size())
+      throw std::invalid_argument(
+          fmt::format("{} body vertex values for {} vertices", x.size(), surface_.vertices.size()));
     for (std::size_t i = 0; i < surface_.vertices.size(); ++i)
       surface_.vertices[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     update();

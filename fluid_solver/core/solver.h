@@ -23,6 +23,7 @@
 #include "common/app/threads.h"
 #include "fluid_solver/core/boundary.h"
 #include "fluid_solver/core/dem_face.h"
+#include "fluid_solver/core/fluid_state_entries.h"
 #include "fluid_solver/core/ghost_fill.h"
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/initial_state.h"
@@ -280,24 +281,13 @@ class Solver final : public FluidSimulation {
   }
 
   void save_state(checkpoint::PartWriter& w) const override {
-    w.put("fluid.conserved_cells", conserved_cells());  // the ghosts are derived: a restart continues bit for bit
-    const std::vector<double> acc = account_values();
-    w.put("fluid.boundary_inflow", std::span<const double>(acc.data(), inflow_.size()));
-    w.put("fluid.embedded_mass", std::span<const double>(acc.data() + inflow_.size(), 2 * NP));
-    w.put_scalar("fluid.time", t_);
-    w.put_integer("fluid.steps", steps_);
-    w.put_integer("fluid.conserved_vars", ncons_);
+    write_fluid_state(w, {conserved_cells(), account_values(), t_, steps_, ncons_, {}}, 2 * NP);
   }
 
   void restore_state(const checkpoint::PartReader& r) override {
-    if (r.integer("fluid.conserved_vars") != ncons_)
-      throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}", r.path().string(),
-                                           r.integer("fluid.conserved_vars"), ncons_));
-    set_conserved_cells(r.doubles("fluid.conserved_cells", static_cast<std::size_t>(ncons_) * g_.interior_count()));
-    std::vector<double> acc = r.doubles("fluid.boundary_inflow", inflow_.size());
-    const std::vector<double> em = r.doubles("fluid.embedded_mass", 2 * NP);
-    acc.insert(acc.end(), em.begin(), em.end());
-    restore_progress(r.scalar("fluid.time"), r.integer("fluid.steps"), acc);
+    const FluidStateEntries e = read_fluid_state(r, ncons_, g_.interior_count(), 0, inflow_.size(), 2 * NP);
+    set_conserved_cells(e.conserved);
+    restore_progress(e.time, e.steps, e.accounts);
   }
 
   std::vector<double> account_values() const override {
