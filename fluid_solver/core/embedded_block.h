@@ -112,6 +112,7 @@ EmbeddedState restrict_to_block(const EmbeddedState& e, const Grid<DIM>& E, cons
   EmbeddedState out;
   out.active = e.active;
   out.max_wall_speed = e.max_wall_speed;
+  out.blocked_x = e.blocked_x;  // the margin's answer; the caller's is the whole mesh's (EmbeddedBodiesRun)
   out.far_cells = far_e.size();
   out.kind.resize(block.total);
   for (std::size_t p = 0; p < block.total; ++p) {  // every padded cell of the block is a cell of E

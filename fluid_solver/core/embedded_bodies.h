@@ -87,6 +87,7 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     return true;
   });
   build_thin_body_faces<DIM>(g, e);
+  e.blocked_x = !e.blocked[0].empty();
   for (const auto& v : s.velocities) {
     double q = 0;
     for (int d = 0; d < DIM; ++d) q += v[d] * v[d];
@@ -250,6 +251,9 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       st = restrict_to_block<DIM>(ext, g_, block_, far);
     } catch (const std::exception& e) { error = e.what(); }
     agree(error);
+    // The x rows take the blocked-face path wherever the whole mesh has a blocked face along x (solver_sweep.h):
+    // the same sums in the same order as on one rank, also on a block that has none.
+    st.blocked_x = links_->any(!st.blocked[0].empty());
     links_->plan_far(0, far);
     inner_->set_embedded(std::move(st), second_order_);
   }

@@ -118,6 +118,7 @@ class Solver final : public FluidSimulation {
       }
     }
     emb_ = std::move(state);
+    emb_.blocked_x = emb_.blocked_x || !emb_.blocked[0].empty();
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
       std::sort(faces.begin(), faces.end(),
