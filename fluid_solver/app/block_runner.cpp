@@ -81,6 +81,13 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
                   opt.scene_name(), setup_error);
   if (comm->any(!setup_error.empty())) return 2;
+  try {  // the embedded bodies' geometry needs the other blocks (they agree on a failure: every rank ends with 2)
+    sim->start_on_blocks();
+  } catch (const std::exception& e) {
+    spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
+                  opt.scene_name(), e.what());
+    return 2;
+  }
   if (root && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
     if (comm->size() == 1) return 4;
     parallel::MpiSession::abort_all(4);
@@ -181,11 +188,16 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   if (res.code != 0 && comm->size() > 1) fail_alone(res.code, res.error.empty() ? res.status : res.error);
   rec.end_totals = totals_over_blocks(*sim, *comm);
   rec.inflow = inflow_over_blocks(*sim, *comm);
+  if (sim->embedded().active && comm->size() > 1) {
+    rec.embedded_mass = embedded_mass_over_blocks(*sim, *comm);
+    rec.embedded_cells = embedded_cells_over_blocks(*sim, *comm);
+  }
   rec.wall = comm->max(rec.wall);
-  std::vector<double> halo{comm->halo_bytes()};
+  std::vector<double> halo{comm->halo_bytes(), comm->sparse_bytes()};
   comm->sum(halo);
   const double halo_s = comm->max(comm->halo_seconds()), wait_s = comm->max(comm->halo_wait_seconds());
   rec.extra["parallel"] = parallel_record(*comm, scene, halo[0], halo_s, wait_s);
+  if (!scene.embedded.bodies.empty()) rec.extra["parallel"]["embedded_exchange_bytes"] = halo[1];
   rec.extra["output_seconds"] = comm->max(output_seconds);  // snapshots and checkpoints, within wall_time_s
   if (!root) return 0;
   try {

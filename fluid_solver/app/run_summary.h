@@ -17,7 +17,9 @@ struct RunRecord {
   nlohmann::json extra = nlohmann::json::object();  // more top-level entries (e.g. "coupling")
   // On a split mesh, the whole mesh's figures (every rank's sums); otherwise the simulation's own are taken.
   std::optional<std::vector<PhaseTotals>> end_totals, inflow;
-  double cells = 0;  // interior cells of the whole mesh; 0: the simulation's
+  std::optional<std::vector<EmbeddedMassAccount>> embedded_mass;
+  std::optional<double> embedded_cells;  // ghost and solid-cut cells
+  double cells = 0;                      // interior cells of the whole mesh; 0: the simulation's
 };
 
 void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim, const RunRecord& rec);

@@ -78,7 +78,7 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
     // by the body, and the ghost-cell wall treatment).
     // Each phase's mass account: what the walls pushed through the grid faces and the cells the body covered or
     // uncovered; `unaccounted` (created less both) is the scheme's round-off.
-    const std::vector<EmbeddedMassAccount> acc = sim.embedded_mass_account();
+    const std::vector<EmbeddedMassAccount> acc = rec.embedded_mass ? *rec.embedded_mass : sim.embedded_mass_account();
     const nlohmann::json& created = j["totals"]["created"];
     nlohmann::json mass = nlohmann::json::array();
     for (std::size_t k = 0; k < acc.size() && k < created.size(); ++k)
@@ -88,7 +88,8 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
                       {"unaccounted", created[k]["mass"].get<double>() - acc[k].walls - acc[k].cells}});
     j["embedded"] = {{"bodies", s.embedded.bodies.size()},
                      {"boundary_order", s.embedded.second_order ? 2 : 1},
-                     {"ghost_and_solid_cut_cells", sim.embedded().ghosts.size()},
+                     {"ghost_and_solid_cut_cells",
+                      rec.embedded_cells ? *rec.embedded_cells : static_cast<double>(sim.embedded().ghosts.size())},
                      {"flow_totals_change", change(false)},
                      {"mass", mass}};
   }

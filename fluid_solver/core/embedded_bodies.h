@@ -13,6 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "fluid_solver/core/block_links.h"
+#include "fluid_solver/core/embedded_block.h"
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/simulation.h"
 #include "fluid_solver/core/wall_faces.h"
@@ -85,6 +87,7 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     return true;
   });
   build_thin_body_faces<DIM>(g, e);
+  e.blocked_x = !e.blocked[0].empty();
   for (const auto& v : s.velocities) {
     double q = 0;
     for (int d = 0; d < DIM; ++d) q += v[d] * v[d];
@@ -93,29 +96,43 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   return e;
 }
 
-// The interface segments of one cycle as CSV (FluidSimulation::interface_segments_csv).
+// The interface segments of one cycle as CSV (FluidSimulation::interface_segments_csv), cells by global index.
+// On a block (geometry built on the margin grid E): only the segments of the block's own cells (Grid::owns), in the
+// whole mesh's order; the blocks' rows merged by cell are one rank's file (block_io.cpp).
 template <int DIM>
-std::string segments_csv(const embedded::EmbeddedGeometry<DIM>& geo) {
+std::string segments_csv(const embedded::EmbeddedGeometry<DIM>& geo, const Grid<DIM>* E = nullptr,
+                         const Grid<DIM>* block = nullptr) {
   std::string out = "i,j,k,cx,cy,cz,nx,ny,nz,area,vx,vy,vz\n";
-  for (const auto& sg : geo.segments)
-    out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", sg.ijk[0],
-                       sg.ijk[1], sg.ijk[2], sg.center[0], sg.center[1], sg.center[2], sg.normal[0], sg.normal[1],
+  for (const auto& sg : geo.segments) {
+    std::array<int, 3> ijk = sg.ijk;
+    if (E && block) {
+      ijk = E->global_ijk(sg.cell);
+      std::size_t p = 0;
+      if (!block_cell(*block, ijk, p) || !block->owns(p)) continue;
+    }
+    out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", ijk[0],
+                       ijk[1], ijk[2], sg.center[0], sg.center[1], sg.center[2], sg.normal[0], sg.normal[1],
                        sg.normal[2], sg.area, sg.velocity[0], sg.velocity[1], sg.velocity[2]);
+  }
   return out;
 }
 
 template <int DIM>
 class EmbeddedBodiesRun final : public FluidSimulation {
  public:
+  // On a block of a split mesh the geometry is built over the block and its margin (embedded_block.h) when every
+  // block has its links to the others (start_on_blocks): its far cells come from them.
   EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
       : inner_(std::move(inner)),
-        g_(s.cells, s.lower, s.upper),
+        block_(s.cells, s.lower, s.upper, s.block.first, s.block.whole() ? s.cells : s.block.count),
+        g_(block_.whole() ? block_ : margin_grid(block_)),
         surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order),
         ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
-    update();
+    if (block_.whole()) update();
+    else want_block_records(g_, block_, opt_.image);
   }
 
   const FluidScene& scene() const override { return inner_->scene(); }
@@ -142,7 +159,13 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
     inner_->restore_progress(time, steps, accounts);
   }
-  void set_block_links(BlockLinks* links) override { inner_->set_block_links(links); }
+  void set_block_links(BlockLinks* links) override {
+    inner_->set_block_links(links);
+    links_ = links;
+  }
+  void start_on_blocks() override {
+    if (!block_.whole()) update();
+  }
   std::size_t state_bytes() const override { return inner_->state_bytes(); }
   double traffic_bytes_per_cell_update() const override { return inner_->traffic_bytes_per_cell_update(); }
   void set_pass_profiling(bool on) override { inner_->set_pass_profiling(on); }
@@ -150,13 +173,21 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   // The bodies move with the flow's steps: their vertices belong to the state.
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);
-    std::vector<double> x;
-    for (const auto& v : surface_.vertices) x.insert(x.end(), v.begin(), v.end());
-    w.put("fluid.embedded_vertices", x);
+    w.put("fluid.embedded_vertices", body_state());
   }
   void restore_state(const checkpoint::PartReader& r) override {
     inner_->restore_state(r);
-    const std::vector<double> x = r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size());
+    set_body_state(r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size()));
+  }
+  std::vector<double> body_state() const override {
+    std::vector<double> x;
+    for (const auto& v : surface_.vertices) x.insert(x.end(), v.begin(), v.end());
+    return x;
+  }
+  void set_body_state(const std::vector<double>& x) override {
+    if (x.size() != 3 * surface_.vertices.size())
+      throw std::invalid_argument(
+          fmt::format("{} body vertex values for {} vertices", x.size(), surface_.vertices.size()));
     for (std::size_t i = 0; i < surface_.vertices.size(); ++i)
       surface_.vertices[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     update();
@@ -165,26 +196,164 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
   double geometry_seconds() const { return geometry_seconds_; }
-  std::string interface_segments_csv() const override { return segments_csv(geo_); }
+  std::string interface_segments_csv() const override {
+    return block_.whole() ? segments_csv(geo_) : segments_csv(geo_, &g_, &block_);
+  }
 
  private:
   // Geometry of the surface at the current time -> the solver (throws for thin bodies etc.).
   void update() {
     const auto t0 = std::chrono::steady_clock::now();
-    embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
-    if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
-      const coupling::FluidSamples smp =
-          interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
-      wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
+    if (!block_.whole()) {
+      update_block();
+    } else {
+      embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
+      if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
+        const coupling::FluidSamples smp =
+            interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
+        wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
+      }
+      EmbeddedState st =
+          to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      st.own_ghosts = st.ghosts.size();
+      inner_->set_embedded(std::move(st), second_order_);
     }
-    inner_->set_embedded(
-        to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr),
-        second_order_);
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
+  // The same on a block: the geometry over the margin grid, the wall pressure samples with the cells of other blocks
+  // they read, the records restricted to the block with its far cells. The blocks agree on a failure before each
+  // exchange (no block waits in one for a block that failed).
+  void update_block() {
+    const auto agree = [&](const std::string& error) {
+      if (links_->any(!error.empty()))
+        throw std::runtime_error(error.empty() ? "another block could not build its embedded geometry" : error);
+    };
+    std::string error;
+    try {
+      embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
+      if (ghost_wall_pressure_) plan_samples();
+    } catch (const std::exception& e) { error = e.what(); }
+    agree(error);
+    if (ghost_wall_pressure_) exchange_samples();
+    std::vector<std::array<int, 3>> far;
+    EmbeddedState st;
+    try {
+      if (ghost_wall_pressure_) {
+        const coupling::FluidSamples smp = interface::sample_faces<DIM>(
+            block_, [&](const std::array<int, 3>& c) { return is_flow_cell(geo_.category[margin_index(c)]); },
+            [&](const std::array<int, 3>* c, int count, CellSample* out) { sample_states(c, count, out); },
+            inner_->scene(), faces_, &sampled_faces_);
+        wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
+      }
+      const EmbeddedState ext =
+          to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      st = restrict_to_block<DIM>(ext, g_, block_, far);
+    } catch (const std::exception& e) { error = e.what(); }
+    agree(error);
+    // The x rows take the blocked-face path wherever the whole mesh has a blocked face along x (solver_sweep.h):
+    // the same sums in the same order as on one rank, also on a block that has none.
+    st.blocked_x = links_->any(!st.blocked[0].empty());
+    links_->plan_far(0, far);
+    inner_->set_embedded(std::move(st), second_order_);
+  }
+
+  // The padded index in the margin grid of global cell c; a cell beyond it is an error (embedded/reach.h).
+  std::size_t margin_index(const std::array<int, 3>& c) const {
+    std::array<int, 3> l{0, 0, 0};
+    for (int d = 0; d < DIM; ++d) {
+      l[d] = c[d] - g_.first[d];
+      if (l[d] < -Grid<DIM>::NG || l[d] >= g_.n[d] + Grid<DIM>::NG)
+        throw embedded::ReachError(fmt::format(
+            "embedded geometry: a wall pressure sample reads cell {} along axis {}, beyond the cells [{}, {}) this "
+            "block's geometry holds (fluid_solver/embedded/reach.h)",
+            c[d], d, g_.first[d] - Grid<DIM>::NG, g_.first[d] + g_.n[d] + Grid<DIM>::NG));
+    }
+    return g_.index(l[0], l[1], l[2]);
+  }
+  bool interior(const std::array<int, 3>& c) const {
+    for (int d = 0; d < DIM; ++d)
+      if (c[d] < block_.first[d] || c[d] >= block_.first[d] + block_.n[d]) return false;
+    return true;
+  }
+  static bool mesh_order(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    return a[2] != b[2] ? a[2] < b[2] : a[1] != b[1] ? a[1] < b[1] : a[0] < b[0];
+  }
+
+  // The faces the block's records name and every cell their samples may read beyond the block's cells.
+  void plan_samples() {
+    faces_ = interface::faces_of_surface(surface_);
+    sampled_faces_.assign(static_cast<std::size_t>(faces_.count), 0);
+    for (const auto& ip : geo_.image_points)
+      if (ip.face >= 0) sampled_faces_[static_cast<std::size_t>(ip.face)] = 1;
+    for (const auto& si : geo_.side_images)
+      if (si.image.face >= 0) sampled_faces_[static_cast<std::size_t>(si.image.face)] = 1;
+    sample_far_.clear();
+    std::array<std::array<int, 3>, 1 << DIM> cells{};
+    std::array<double, 1 << DIM> w{};
+    for (int f = 0; f < faces_.count; ++f)
+      if (sampled_faces_[static_cast<std::size_t>(f)])
+        interface::sample_points<DIM>(block_, faces_, f, interface::SampleOptions{},
+                                      [&](const std::array<double, 3>& x) {
+                                        interface::sample_stencil<DIM>(block_, x, cells, w);
+                                        for (const auto& c : cells)
+                                          if (!interior(c)) sample_far_.push_back(c);
+                                      });
+    std::sort(sample_far_.begin(), sample_far_.end(), mesh_order);
+    sample_far_.erase(std::unique(sample_far_.begin(), sample_far_.end()), sample_far_.end());
+  }
+
+  // The states of the sampled cells of other blocks (channel 1), and those of this block's cells they asked for.
+  void exchange_samples() {
+    const std::vector<std::size_t>& send = links_->plan_far(1, sample_far_);
+    const int np = inner_->scene().num_phases();
+    constexpr int kPerPhase = 8;  // CellSample: alpha, rho, p, c, velocity[3], granular
+    std::vector<CellSample> st(static_cast<std::size_t>(np));
+    std::vector<double> out(send.size() * kPerPhase * np);
+    for (std::size_t i = 0; i < send.size(); ++i) {
+      inner_->cell_states(&send[i], 1, st.data());
+      for (int k = 0; k < np; ++k) {
+        const CellSample& c = st[static_cast<std::size_t>(k)];
+        double* o = out.data() + (i * np + k) * kPerPhase;
+        o[0] = c.alpha, o[1] = c.rho, o[2] = c.p, o[3] = c.c;
+        o[4] = c.velocity[0], o[5] = c.velocity[1], o[6] = c.velocity[2], o[7] = c.granular;
+      }
+    }
+    sample_values_.resize(sample_far_.size() * kPerPhase * np);
+    links_->exchange_far(1, out.data(), sample_values_.data(), kPerPhase * np);
+  }
+
+  // States of global cells for the samples: the block's own, or those exchange_samples brought.
+  void sample_states(const std::array<int, 3>* c, int count, CellSample* out) const {
+    const int np = inner_->scene().num_phases();
+    for (int q = 0; q < count; ++q) {
+      CellSample* o = out + static_cast<std::ptrdiff_t>(q) * np;
+      if (interior(c[q])) {
+        const std::size_t idx =
+            block_.index(c[q][0] - block_.first[0], c[q][1] - block_.first[1], c[q][2] - block_.first[2]);
+        inner_->cell_states(&idx, 1, o);
+        continue;
+      }
+      const auto it = std::lower_bound(sample_far_.begin(), sample_far_.end(), c[q], mesh_order);
+      if (it == sample_far_.end() || *it != c[q])
+        throw std::logic_error("embedded geometry: a wall pressure sample reads a cell it did not ask for");
+      const double* v = sample_values_.data() + static_cast<std::size_t>(it - sample_far_.begin()) * 8 * np;
+      for (int k = 0; k < np; ++k, v += 8) {
+        o[k].alpha = v[0], o[k].rho = v[1], o[k].p = v[2], o[k].c = v[3];
+        o[k].velocity = {v[4], v[5], v[6]};
+        o[k].granular = v[7];
+      }
+    }
+  }
+
   std::unique_ptr<FluidSimulation> inner_;
-  Grid<DIM> g_;
+  Grid<DIM> block_;  // the solver's cells (the whole mesh on one rank)
+  Grid<DIM> g_;      // the geometry's: the whole mesh, or the block and its margin (margin_grid)
+  BlockLinks* links_ = nullptr;
+  coupling::Faces faces_;                       // a block's: the surface's faces, those it samples
+  std::vector<char> sampled_faces_;             // and which of them its records name
+  std::vector<std::array<int, 3>> sample_far_;  // cells of other blocks their samples read (mesh order)
+  std::vector<double> sample_values_;           // and their states (8 values per phase)
   embedded::Surface surface_;
   embedded::GeometryOptions opt_;
   embedded::EmbeddedGeometry<DIM> geo_;

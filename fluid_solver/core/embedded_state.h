@@ -70,6 +70,14 @@ struct EmbeddedState {
   std::array<std::vector<SideGhost>, 3> side_ghosts;  // per direction, sorted by flow cell then side
   std::array<std::vector<BlockedFace>, 3> blocked;    // per direction
   double max_wall_speed = 0;                          // for the time step
+  // The mesh has blocked faces along x (on a block: anywhere in the whole mesh, though the block may have none): the
+  // x rows then apply their face fluxes to the cells face by face (solver_sweep.h), on every block as on one rank.
+  bool blocked_x = false;
+  // On a block of a split mesh: the cells beyond its padded cells that the records read (image-point stencils, the
+  // wall limiter's cells). Index total + s (total = the grid's padded cells) is far cell s in the records; its
+  // primitives come from its owner every stage (BlockLinks::exchange_far, channel 0).
+  std::size_t far_cells = 0;
+  std::size_t own_ghosts = 0;  // ghost records of cells the block owns (Grid::owns): the blocks' sum is one rank's
 };
 
 }  // namespace cosim::fluid

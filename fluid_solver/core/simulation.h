@@ -84,6 +84,13 @@ class FluidSimulation {
   virtual std::vector<double> conserved_cells() const = 0;
   virtual void set_conserved_cells(const std::vector<double>& values) = 0;
   virtual int conserved_vars() const = 0;
+  // The scene's embedded bodies move with the steps: their vertices (x, y, z each) belong to the state (empty
+  // without them); set_body_state places them and cuts them anew (on a split mesh every block together).
+  virtual std::vector<double> body_state() const { return {}; }
+  // On a split mesh, after every block has its links (set_block_links) and the blocks agreed that they are set up:
+  // what needs the other blocks to begin (the embedded bodies' geometry and its far cells). Every block together.
+  virtual void start_on_blocks() {}
+  virtual void set_body_state(const std::vector<double>& /*vertices*/) {}
   // The accounts that run with the state (a checkpoint's besides the cells): the boundary inflow's raw sums
   // (per phase mass, momentum[dim], energy) then the embedded mass through walls and by cells, per phase; with the
   // time and step count.

@@ -23,6 +23,7 @@
 #include "common/app/threads.h"
 #include "fluid_solver/core/boundary.h"
 #include "fluid_solver/core/dem_face.h"
+#include "fluid_solver/core/fluid_state_entries.h"
 #include "fluid_solver/core/ghost_fill.h"
 #include "fluid_solver/core/grid.h"
 #include "fluid_solver/core/initial_state.h"
@@ -112,11 +113,12 @@ class Solver final : public FluidSimulation {
       const double vol = g_.cell_volume();
       for (std::size_t c = 0; c < emb_.kind.size(); ++c) {
         const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
-        if (change != 0)
+        if (change != 0 && g_.owns(c))  // a block counts its own cells (another block counts its ghost layers')
           for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
       }
     }
     emb_ = std::move(state);
+    emb_.blocked_x = emb_.blocked_x || !emb_.blocked[0].empty();
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
       std::sort(faces.begin(), faces.end(),
@@ -130,6 +132,14 @@ class Solver final : public FluidSimulation {
       });
     if (emb_.active && emb_.kind.size() != g_.total)
       throw std::invalid_argument("embedded state: kind array does not match the grid");
+    if (emb_.far_cells > 0 && !links_)
+      throw std::invalid_argument("embedded state: cells beyond the grid's ghost layers without other blocks");
+    if (W_.cells < g_.total + emb_.far_cells) {  // room for the far cells' primitives after the padded cells
+      FieldArray w;
+      w.resize(nprim_, g_.total + emb_.far_cells + emb_.far_cells / 2);
+      for (int v = 0; v < nprim_; ++v) std::copy(W_.var(v), W_.var(v) + g_.total, w.var(v));
+      W_ = std::move(w);
+    }
   }
   const EmbeddedState& embedded() const override { return emb_; }
 
@@ -272,24 +282,13 @@ class Solver final : public FluidSimulation {
   }
 
   void save_state(checkpoint::PartWriter& w) const override {
-    w.put("fluid.conserved_cells", conserved_cells());  // the ghosts are derived: a restart continues bit for bit
-    const std::vector<double> acc = account_values();
-    w.put("fluid.boundary_inflow", std::span<const double>(acc.data(), inflow_.size()));
-    w.put("fluid.embedded_mass", std::span<const double>(acc.data() + inflow_.size(), 2 * NP));
-    w.put_scalar("fluid.time", t_);
-    w.put_integer("fluid.steps", steps_);
-    w.put_integer("fluid.conserved_vars", ncons_);
+    write_fluid_state(w, {conserved_cells(), account_values(), t_, steps_, ncons_, {}}, 2 * NP);
   }
 
   void restore_state(const checkpoint::PartReader& r) override {
-    if (r.integer("fluid.conserved_vars") != ncons_)
-      throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}", r.path().string(),
-                                           r.integer("fluid.conserved_vars"), ncons_));
-    set_conserved_cells(r.doubles("fluid.conserved_cells", static_cast<std::size_t>(ncons_) * g_.interior_count()));
-    std::vector<double> acc = r.doubles("fluid.boundary_inflow", inflow_.size());
-    const std::vector<double> em = r.doubles("fluid.embedded_mass", 2 * NP);
-    acc.insert(acc.end(), em.begin(), em.end());
-    restore_progress(r.scalar("fluid.time"), r.integer("fluid.steps"), acc);
+    const FluidStateEntries e = read_fluid_state(r, ncons_, g_.interior_count(), 0, inflow_.size(), 2 * NP);
+    set_conserved_cells(e.conserved);
+    restore_progress(e.time, e.steps, e.accounts);
   }
 
   std::vector<double> account_values() const override {
@@ -378,6 +377,7 @@ class Solver final : public FluidSimulation {
 
   // solver_stage.h: one Runge-Kutta stage, the update of a finished row, the deferred primitives.
   void stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt = 0.0);
+  void exchange_far_cells();
   void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives,
                   double exchange_dt);
   template <int D>
@@ -551,6 +551,7 @@ class Solver final : public FluidSimulation {
   // embedded_mass_account(): through the walls since the start and this step, with the cells covered or uncovered.
   std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
+  std::vector<double> far_send_, far_recv_;         // far cells' primitives to and from the other blocks
   bool wall_second_order_ = true;
   bool profiling_ = false;  // per-pass clocks (set_pass_profiling)
   // Per phase: below this volume fraction the phase is a trace (docs/methods.md §2.7); 2 for a dispersed phase.

@@ -22,6 +22,7 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
       if (links_) links_->exchange_ghosts(W_, d);
     }
     if (emb_.active) {
+      if (links_) exchange_far_cells();
       fill_ghost_cells<DIM, NP>(emb_, W_, eos_);
       fill_side_ghosts<DIM, NP>(emb_, W_, eos_, side_values_);
     }
@@ -61,6 +62,22 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
       for (const auto& sc : scratch_) f += sc.flow_mass[k] - sc.boundary[fvar_flux(k, 0)];
       step_wall_mass_[k] = b * (step_wall_mass_[k] + dt * f);
     }
+}
+
+// On a block of a split mesh: the primitives of the far cells its embedded records read (EmbeddedState::far_cells)
+// from their owners, and those of its cells the other blocks read, after every block's ghost layers are filled.
+// Every block takes part (one without bodies near it may still hold cells another one reads).
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::exchange_far_cells() {
+  const std::vector<std::size_t>& send = links_->far_send(0);
+  const std::size_t nv = static_cast<std::size_t>(nprim_);
+  far_send_.resize(send.size() * nv);
+  for (std::size_t i = 0; i < send.size(); ++i)
+    for (std::size_t v = 0; v < nv; ++v) far_send_[i * nv + v] = W_.var(static_cast<int>(v))[send[i]];
+  far_recv_.resize(emb_.far_cells * nv);
+  links_->exchange_far(0, far_send_.data(), far_recv_.data(), nprim_);
+  for (std::size_t s = 0; s < emb_.far_cells; ++s)
+    for (std::size_t v = 0; v < nv; ++v) W_.var(static_cast<int>(v))[g_.total + s] = far_recv_[s * nv + v];
 }
 
 // A row of cells whose residual is complete: the Runge-Kutta combination of its flow cells (at a = 0, U0

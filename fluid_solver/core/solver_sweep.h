@@ -33,7 +33,7 @@ inline void Solver<DIM, NP, FK>::x_row(Scratch& sc, std::size_t base, double* ed
   PassClock clk(pass_acc(Pass::Apply));
   if (domain_edge_[0][0]) add_boundary_flux<0>(sc, faces, flen, 0, base, 1);
   if (domain_edge_[0][1]) add_boundary_flux<0>(sc, faces, flen, n0, base + n0 - 1, -1);
-  if (emb_.active && !emb_.blocked[0].empty()) {  // a blocked face's two cells get different fluxes
+  if (emb_.active && emb_.blocked_x) {  // a blocked face's two cells get different fluxes (somewhere in the mesh)
     blocked(true);
     apply_right<0, DIM == 1>(faces, flen, base, 0, n0, inv_dx);
     blocked(false);

@@ -41,7 +41,7 @@ DomainWallFaces domain_wall_faces(const Grid<DIM>& g, const Surface& s, const Su
   w.code.assign(s.faces.size(), 0);
   for (std::size_t d = 0; d < 3; ++d) {
     w.lower[d] = g.lower[d];
-    w.upper[d] = g.lower[d] + g.n[d] * g.dx[d];
+    w.upper[d] = g.lower[d] + g.mesh[d] * g.dx[d];  // the whole mesh's, also on a block
     w.tol[d] = 1e-10 * g.dx[d];
   }
   const int nv = DIM == 1 ? 1 : DIM;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fluid_solver/core/embedded_state.h"
+#include "fluid_solver/embedded/reach.h"
 #include "fluid_solver/embedded/signed_distance.h"
 
 namespace cosim::fluid::embedded {
@@ -41,7 +42,14 @@ struct ImagePoint {
 
 struct ImagePointOptions {
   double min_flow_weight = 0.5;  // re-weight when the flow nodes carry at least this much
-  int max_pushes = 2;
+  int max_pushes = kMaxImagePushes;
+  // The padded cells (lattice indices, [lo, hi) per direction) whose records are wanted: a block builds its
+  // geometry with a margin around its cells and needs the records of its own padded cells only.
+  std::array<int, 3> want_lo{0, 0, 0}, want_hi{1 << 30, 1 << 30, 1 << 30};
+  bool wanted(const std::array<int, 3>& I) const {
+    return I[0] >= want_lo[0] && I[0] < want_hi[0] && I[1] >= want_lo[1] && I[1] < want_hi[1] && I[2] >= want_lo[2] &&
+           I[2] < want_hi[2];
+  }
 };
 
 namespace detail {
@@ -54,8 +62,18 @@ void build_stencil(const Lattice<DIM>& C, const Usable& usable, ImagePoint& ip, 
   std::array<double, 3> t{0, 0, 0};
   for (int d = 0; d < DIM; ++d) {
     const auto ud = static_cast<std::size_t>(d);
-    const double u = (ip.x_image[ud] - C.coord(d, 0)) / C.dx[ud];
-    base[ud] = std::clamp(static_cast<int>(std::floor(std::clamp(u, -1.0, 1e9))), 0, C.count[ud] - 2);
+    // In the whole mesh's lattice (clamped to its edges, its ghost layers), then this block's.
+    const double u = (ip.x_image[ud] - C.origin(d)) / C.dx[ud];
+    const int whole = std::clamp(static_cast<int>(std::floor(std::clamp(u, -1.0, 1e9))), 0, C.whole[ud] - 2);
+    base[ud] = whole - C.first[ud];
+    if (base[ud] < 0 || base[ud] > C.count[ud] - 2) {
+      std::ostringstream msg;
+      msg << "embedded geometry: the image point of cell (" << ip.ijk[0] + C.first[0] << ", " << ip.ijk[1] + C.first[1]
+          << ", " << ip.ijk[2] + C.first[2] << ") reaches cell " << whole - 2 << " along axis " << d
+          << ", beyond the cells [" << C.first[ud] - 2 << ", " << C.first[ud] + C.count[ud] - 2
+          << ") this block's geometry holds (fluid_solver/embedded/reach.h)";
+      throw ReachError(msg.str());
+    }
     t[ud] = std::clamp((ip.x_image[ud] - C.coord(d, base[ud])) / C.dx[ud], 0.0, 1.0);
   }
   ip.stencil_size = 1 << DIM;
@@ -110,9 +128,10 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
   for (const auto& b : centres.band) {
     const auto kind = static_cast<CellKind>(category[b.index]);
     if (kind != CellKind::Ghost && kind != CellKind::SolidCut) continue;
+    const auto I = C.ijk(b.index);
+    if (!opt.wanted(I)) continue;
     ImagePoint ip;
     ip.cell = b.index;
-    const auto I = C.ijk(b.index);
     ip.ijk = {I[0] - Grid<DIM>::offset(0), I[1] - Grid<DIM>::offset(1), I[2] - Grid<DIM>::offset(2)};
     ip.kind = kind;
     ip.phi = centres.phi[b.index];
@@ -123,10 +142,9 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     ip.wall_velocity = face_velocity(s, b.face, b.bary);
     const double flow_weight = detail::place_image_point(
         C, [&](std::size_t c) { return is_flow_cell(category[c]); }, hmax, opt, ip);
-    bool outside = false;  // a ghost layer of the domain: its boundary condition applies there
-    for (int d = 0; d < DIM; ++d)
-      outside = outside || ip.ijk[static_cast<std::size_t>(d)] < 0 ||
-                ip.ijk[static_cast<std::size_t>(d)] >= g.n[static_cast<std::size_t>(d)];
+    bool outside = false;  // a ghost layer of the domain (not of a block): its boundary condition applies there
+    for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d)
+      outside = outside || ip.ijk[d] + g.first[d] < 0 || ip.ijk[d] + g.first[d] >= g.mesh[d];
     if (!(flow_weight > 0) && outside) {
       ip.stencil_size = 0;  // the ghost fill leaves the cell to the domain boundary condition
       out.push_back(ip);
@@ -134,8 +152,9 @@ void build_image_points(const Grid<DIM>& g, const LevelSet<DIM>& centres, const 
     }
     if (!(flow_weight > 0)) {
       std::ostringstream msg;
-      msg << "embedded geometry: no fluid cell around the image point of cell (" << ip.ijk[0] << ", " << ip.ijk[1]
-          << ", " << ip.ijk[2] << ") at x = (" << ip.x_cell[0] << ", " << ip.x_cell[1] << ", " << ip.x_cell[2]
+      msg << "embedded geometry: no fluid cell around the image point of cell (" << ip.ijk[0] + g.first[0] << ", "
+          << ip.ijk[1] + g.first[1] << ", " << ip.ijk[2] + g.first[2] << ") at x = (" << ip.x_cell[0] << ", "
+          << ip.x_cell[1] << ", " << ip.x_cell[2]
           << "): the body or the fluid gap there is thinner than the grid resolves; refine the grid";
       throw std::runtime_error(msg.str());
     }

@@ -16,14 +16,20 @@ template <int DIM>
 struct Lattice {
   std::array<int, 3> count{1, 1, 1};
   std::array<double, 3> lower{0, 0, 0}, dx{1, 1, 1};
-  std::array<double, 3> shift{0, 0, 0};  // coordinate(d, I) = lower + (I + shift) dx
+  std::array<double, 3> shift{0, 0, 0};  // coordinate(d, I) = lower + ((I + first) + shift) dx
+  // The lattice of a block: its point I is point I + first of the whole mesh's lattice, which has `whole` points
+  // per direction. Coordinates and index ranges are computed in the whole lattice's numbering, so a point has the
+  // same coordinates and the same neighbours bit for bit whatever block holds it.
+  std::array<int, 3> first{0, 0, 0};
+  std::array<int, 3> whole{1, 1, 1};
   std::size_t size = 1;
 
   double coord(int d, int I) const {
-    return d < DIM ? lower[static_cast<std::size_t>(d)] +
-                         (static_cast<double>(I) + shift[static_cast<std::size_t>(d)]) * dx[static_cast<std::size_t>(d)]
-                   : 0.0;
+    const auto ud = static_cast<std::size_t>(d);
+    return d < DIM ? lower[ud] + (static_cast<double>(I + first[ud]) + shift[ud]) * dx[ud] : 0.0;
   }
+  // The coordinate of the whole lattice's point 0 along d.
+  double origin(int d) const { return coord(d, -first[static_cast<std::size_t>(d)]); }
   Vec3 point(int I, int J, int K) const { return {coord(0, I), coord(1, J), coord(2, K)}; }
   std::size_t index(int I, int J, int K) const {
     return static_cast<std::size_t>(I) +
@@ -48,6 +54,8 @@ Lattice<DIM> centre_lattice(const Grid<DIM>& g) {
     L.lower[d] = g.lower[d];
     L.dx[d] = g.dx[d];
     L.shift[d] = static_cast<int>(d) < DIM ? 0.5 - Grid<DIM>::NG : 0.0;
+    L.first[d] = g.first[d];
+    L.whole[d] = static_cast<int>(d) < DIM ? g.mesh[d] + 2 * Grid<DIM>::NG : 1;
   }
   L.size = g.total;
   return L;
@@ -64,6 +72,8 @@ Lattice<DIM> node_lattice(const Grid<DIM>& g) {
     L.lower[d] = g.lower[d];
     L.dx[d] = g.dx[d];
     L.shift[d] = active ? -static_cast<double>(Grid<DIM>::NG) : 0.0;
+    L.first[d] = g.first[d];
+    L.whole[d] = active ? g.mesh[d] + 2 * Grid<DIM>::NG + 1 : 1;
     L.size *= static_cast<std::size_t>(L.count[d]);
   }
   return L;
@@ -87,15 +97,16 @@ void for_each_in_slab(const Lattice<DIM>& L, const Vec3& lo, const Vec3& hi, con
   if (n[ua] == 0) return;
   auto to_int = [](double v) { return static_cast<int>(std::clamp(v, -1e9, 1e9)); };
   std::array<int, 3> rmin{0, 0, 0}, rmax{0, 0, 0};
+  // Ranges in the whole lattice's numbering (from its origin), then shifted to this lattice's.
   for (std::size_t d = 0; d < static_cast<std::size_t>(DIM); ++d) {
-    const double origin = L.coord(static_cast<int>(d), 0);
-    rmin[d] = std::max(0, to_int(std::ceil((lo[d] - e[d] - origin) / L.dx[d])));
-    rmax[d] = std::min(L.count[d] - 1, to_int(std::floor((hi[d] + e[d] - origin) / L.dx[d])));
+    const double origin = L.origin(static_cast<int>(d));
+    rmin[d] = std::max(0, to_int(std::ceil((lo[d] - e[d] - origin) / L.dx[d])) - L.first[d]);
+    rmax[d] = std::min(L.count[d] - 1, to_int(std::floor((hi[d] + e[d] - origin) / L.dx[d])) - L.first[d]);
     if (rmin[d] > rmax[d]) return;
   }
   const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;  // the two other axes (inactive ones have range [0,0])
   const auto ub1 = static_cast<std::size_t>(b1), ub2 = static_cast<std::size_t>(b2);
-  const double origin_a = L.coord(a, 0);
+  const double origin_a = L.origin(a);
   std::array<int, 3> I{0, 0, 0};
   for (I[ub2] = rmin[ub2]; I[ub2] <= rmax[ub2]; ++I[ub2]) {
     int r1min = rmin[ub1], r1max = rmax[ub1];
@@ -119,16 +130,16 @@ void for_each_in_slab(const Lattice<DIM>& L, const Vec3& lo, const Vec3& hi, con
           }
       }
       if (y0 > y1) continue;
-      const double origin1 = L.coord(b1, 0);
-      r1min = std::max(r1min, to_int(std::ceil((y0 - e[ub1] - origin1) / L.dx[ub1])));
-      r1max = std::min(r1max, to_int(std::floor((y1 + e[ub1] - origin1) / L.dx[ub1])));
+      const double origin1 = L.origin(b1);
+      r1min = std::max(r1min, to_int(std::ceil((y0 - e[ub1] - origin1) / L.dx[ub1])) - L.first[ub1]);
+      r1max = std::min(r1max, to_int(std::floor((y1 + e[ub1] - origin1) / L.dx[ub1])) - L.first[ub1]);
     }
     for (I[ub1] = r1min; I[ub1] <= r1max; ++I[ub1]) {
       const double s = n[ub1] * L.coord(b1, I[ub1]) + n[ub2] * L.coord(b2, I[ub2]);
       double t0 = (c - s - r) / n[ua], t1 = (c - s + r) / n[ua];
       if (t0 > t1) std::swap(t0, t1);
-      const int ia = std::max(rmin[ua], to_int(std::ceil((t0 - origin_a) / L.dx[ua])));
-      const int ib = std::min(rmax[ua], to_int(std::floor((t1 - origin_a) / L.dx[ua])));
+      const int ia = std::max(rmin[ua], to_int(std::ceil((t0 - origin_a) / L.dx[ua])) - L.first[ua]);
+      const int ib = std::min(rmax[ua], to_int(std::floor((t1 - origin_a) / L.dx[ua])) - L.first[ua]);
       for (I[ua] = ia; I[ua] <= ib; ++I[ua]) visit(I[0], I[1], I[2]);
     }
   }

@@ -58,7 +58,7 @@ std::vector<SideImage> find_side_images(const Grid<DIM>& g, const LevelSet<DIM>&
       for (int dir = -1; dir <= 1; dir += 2) {
         std::array<int, 3> J = I;
         J[static_cast<std::size_t>(d)] += dir;
-        if (!C.inside(J[0], J[1], J[2])) continue;
+        if (!C.inside(J[0], J[1], J[2]) || !opt.wanted(I) || !opt.wanted(J)) continue;
         const std::size_t xidx = C.index(J[0], J[1], J[2]);
         const BandPoint* x = centres.at(xidx);
         if (!x || !(dot(x->normal, f.normal) < opposite_cos)) continue;

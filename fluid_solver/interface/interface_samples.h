@@ -27,20 +27,78 @@ namespace cosim::fluid::interface {
 
 struct SampleOptions {
   double min_flow_weight = 0.5;
-  int max_pushes = 2;
+  int max_pushes = 2;                 // embedded::kMaxImagePushes (the reach of a block's geometry, embedded/reach.h)
   bool extrapolate_pressure = true;   // pressure extrapolated linearly to the wall from two points
   bool extrapolate_velocity = false;  // and the normal velocity with it (where the pressure's extrapolation holds)
 };
 
+// The (bi/tri)linear stencil of the interior cell centres of the whole mesh around x (clamped to its interior
+// cells): global cell indices and plain weights. g: the mesh's origin, spacing and cell counts (Grid::mesh); a block's
+// grid gives the same stencil as the whole mesh's.
 template <int DIM>
-coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<std::uint8_t>& kind,
-                                        const FluidSimulation& sim, const coupling::Faces& faces,
-                                        const SampleOptions& opt = {}) {
+void sample_stencil(const Grid<DIM>& g, const std::array<double, 3>& x, std::array<std::array<int, 3>, 1 << DIM>& cells,
+                    std::array<double, 1 << DIM>& w) {
+  std::array<int, 3> base{0, 0, 0};
+  std::array<double, 3> t{0, 0, 0};
+  for (int d = 0; d < DIM; ++d) {  // cell-centre lattice, clamped to the interior cells
+    const double u = std::clamp((x[d] - g.lower[d]) / g.dx[d] - 0.5, 0.0, g.mesh[d] - 1.0);
+    base[d] = std::min(static_cast<int>(u), std::max(g.mesh[d] - 2, 0));
+    t[d] = g.mesh[d] > 1 ? u - base[d] : 0.0;
+  }
+  for (int k = 0; k < (1 << DIM); ++k) {
+    std::array<int, 3> ijk{0, 0, 0};
+    double wk = 1;
+    for (int d = 0; d < DIM; ++d) {
+      const int bit = (k >> d) & 1;
+      ijk[d] = std::min(base[d] + bit, g.mesh[d] - 1);
+      wk *= bit ? t[d] : 1.0 - t[d];
+    }
+    cells[k] = ijk;
+    w[k] = wk;
+  }
+}
+
+// The points a face's samples may be taken at (sample_faces below): the face centre out along the normal by
+// (1 + push) h and one h more, while inside the mesh; visit(x) for each.
+template <int DIM, class Visit>
+void sample_points(const Grid<DIM>& g, const coupling::Faces& faces, int f, const SampleOptions& opt, Visit&& visit) {
+  std::array<double, 3> c{0, 0, 0}, n{0, 0, 0};
+  double h = 0;
+  for (int d = 0; d < DIM; ++d) {
+    c[d] = faces.centre[static_cast<std::size_t>(f) * DIM + d];
+    n[d] = faces.normal[static_cast<std::size_t>(f) * DIM + d];
+    h += std::abs(n[d]) * g.dx[d];
+  }
+  const auto inside = [&](const std::array<double, 3>& x) {
+    for (int d = 0; d < DIM; ++d)
+      if (x[d] < g.lower[d] || x[d] > g.lower[d] + g.mesh[d] * g.dx[d]) return false;
+    return true;
+  };
+  for (int push = 0; push <= opt.max_pushes; ++push) {
+    const double s1 = (1.0 + push) * h;
+    std::array<double, 3> x{0, 0, 0}, x2{0, 0, 0};
+    for (int d = 0; d < DIM; ++d) {
+      x[d] = c[d] + s1 * n[d];
+      x2[d] = c[d] + (s1 + h) * n[d];
+    }
+    if (!inside(x)) return;
+    visit(x);
+    if (inside(x2)) visit(x2);
+  }
+}
+
+// The samples of the faces (those with only[f] != 0 when `only` is given; the others are not wetted), from the cells
+// of the whole mesh: flow(ijk) says whether global cell ijk is a flow cell, states(ijk, count, out) gives the states
+// of `count` global cells (np per cell). On a block these come from its own cells and those the other blocks sent.
+template <int DIM, class Flow, class States>
+coupling::FluidSamples sample_faces(const Grid<DIM>& g, const Flow& flow_cell, const States& cell_states,
+                                    const FluidScene& scene, const coupling::Faces& faces,
+                                    const std::vector<char>* only, const SampleOptions& opt = {}) {
   constexpr int NS = 1 << DIM;
-  const int np = sim.scene().num_phases();
-  const bool dispersed = sim.scene().exchange.dispersed;
-  const ParticleStress& stress = sim.scene().exchange.particle_stress;
-  const GranularGas& granular = sim.scene().exchange.granular;
+  const int np = scene.num_phases();
+  const bool dispersed = scene.exchange.dispersed;
+  const ParticleStress& stress = scene.exchange.particle_stress;
+  const GranularGas& granular = scene.exchange.granular;
   coupling::FluidSamples out;
   out.count = faces.count;
   out.phases = np;
@@ -51,7 +109,7 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   out.pressure.assign(m, 0.0);
   out.impedance.assign(m, 0.0);
   out.wetted.assign(faces.count, 0);
-  std::array<std::size_t, NS> cells{};
+  std::array<std::array<int, 3>, NS> cells{};
   std::array<double, NS> w{};
   std::vector<CellSample> states(static_cast<std::size_t>(NS) * np);
   // Per phase at point x: alpha, rho, u . n, p, c from the flow cells of the stencil; false when they carry
@@ -61,28 +119,14 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   };
   std::vector<Values> vals(static_cast<std::size_t>(np)), far(static_cast<std::size_t>(np));
   const auto evaluate = [&](const std::array<double, 3>& x, const std::array<double, 3>& n, std::vector<Values>& v) {
-    std::array<int, 3> base{0, 0, 0};
-    std::array<double, 3> t{0, 0, 0};
-    for (int d = 0; d < DIM; ++d) {  // cell-centre lattice, clamped to the interior cells
-      const double u = std::clamp((x[d] - g.lower[d]) / g.dx[d] - 0.5, 0.0, g.n[d] - 1.0);
-      base[d] = std::min(static_cast<int>(u), std::max(g.n[d] - 2, 0));
-      t[d] = g.n[d] > 1 ? u - base[d] : 0.0;
-    }
+    sample_stencil<DIM>(g, x, cells, w);
     double flow = 0;
     for (int k = 0; k < NS; ++k) {
-      std::array<int, 3> ijk{0, 0, 0};
-      double wk = 1;
-      for (int d = 0; d < DIM; ++d) {
-        const int bit = (k >> d) & 1;
-        ijk[d] = std::min(base[d] + bit, g.n[d] - 1);
-        wk *= bit ? t[d] : 1.0 - t[d];
-      }
-      cells[k] = g.index(ijk[0], ijk[1], ijk[2]);
-      w[k] = kind.empty() || is_flow_cell(kind[cells[k]]) ? wk : 0.0;
+      w[k] = flow_cell(cells[k]) ? w[k] : 0.0;
       flow += w[k];
     }
     if (flow < opt.min_flow_weight) return false;
-    sim.cell_states(cells.data(), NS, states.data());
+    cell_states(cells.data(), NS, states.data());
     for (int k = 0; k < np; ++k) {
       Values s{0, 0, 0, 0, 0, 0};
       for (int q = 0; q < NS; ++q) {
@@ -102,10 +146,11 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
   };
   const auto inside = [&](const std::array<double, 3>& x) {
     for (int d = 0; d < DIM; ++d)
-      if (x[d] < g.lower[d] || x[d] > g.lower[d] + g.n[d] * g.dx[d]) return false;
+      if (x[d] < g.lower[d] || x[d] > g.lower[d] + g.mesh[d] * g.dx[d]) return false;
     return true;
   };
   for (int f = 0; f < faces.count; ++f) {
+    if (only && !(*only)[static_cast<std::size_t>(f)]) continue;
     std::array<double, 3> c{0, 0, 0}, n{0, 0, 0};
     double h = 0, v_wall = 0;
     for (int d = 0; d < DIM; ++d) {
@@ -163,6 +208,20 @@ coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<st
     }
   }
   return out;
+}
+
+template <int DIM>
+coupling::FluidSamples sample_interface(const Grid<DIM>& g, const std::vector<std::uint8_t>& kind,
+                                        const FluidSimulation& sim, const coupling::Faces& faces,
+                                        const SampleOptions& opt = {}) {
+  std::array<std::size_t, 1 << DIM> idx{};
+  return sample_faces<DIM>(
+      g, [&](const std::array<int, 3>& c) { return kind.empty() || is_flow_cell(kind[g.index(c[0], c[1], c[2])]); },
+      [&](const std::array<int, 3>* c, int count, CellSample* out) {
+        for (int k = 0; k < count; ++k) idx[k] = g.index(c[k][0], c[k][1], c[k][2]);
+        sim.cell_states(idx.data(), static_cast<std::size_t>(count), out);
+      },
+      sim.scene(), faces, nullptr, opt);
 }
 
 // The wall pressure of each face for the ghost cells (to_embedded_state): two slots per face (phases 0 and 1),

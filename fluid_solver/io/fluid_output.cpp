@@ -61,11 +61,16 @@ std::size_t snapshot_values_per_cell(const FluidScene& s) {
   return np * per_phase + (granular ? 1 : 0) + (np > 1 ? 1 + 3 + 1 : 0) + (embedded_active ? 1 : 0);
 }
 
+io::UniformGrid snapshot_grid(const FluidScene& s) {
+  io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
+  for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+  return g;
+}
+
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments) {
   const FluidScene& s = sim.scene();
   const SnapshotFields fields(sim);
-  io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
-  for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+  const io::UniformGrid g = snapshot_grid(s);
   const std::size_t index = series.count();
   const std::filesystem::path h5 = series.write(sim.time(), sim.steps(), g, fields.views);
   if (index == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");  // an earlier run's

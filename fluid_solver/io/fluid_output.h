@@ -30,6 +30,8 @@ std::size_t snapshot_values_per_cell(const FluidScene& scene);
 // Writes per phase: <phase>_alpha (two phases only), _density, _velocity, _pressure, _temperature;
 // for two phases also mixture_density, mixture_velocity (mass-averaged), mixture_pressure (sum alpha p).
 // The interface segments (CSV) go next to the snapshot: `segments`, or sim.interface_segments_csv().
+// The snapshot's grid: the whole mesh (its origin and spacing), whatever block writes into it.
+io::UniformGrid snapshot_grid(const FluidScene& scene);
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim);
 void write_snapshot(io::SnapshotSeries& series, const FluidSimulation& sim, const std::string& segments);
 

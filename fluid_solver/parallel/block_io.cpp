@@ -2,12 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
+#include <string_view>
 
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/output_resume.h"
 #include "common/checkpoint/part_file.h"
 #include "common/io/atomic_file.h"
+#include "fluid_solver/core/fluid_state_entries.h"
 #include "fluid_solver/io/fluid_output.h"
 
 namespace cosim::fluid {
@@ -34,6 +38,53 @@ std::vector<PhaseTotals> summed(std::vector<PhaseTotals> t, const parallel::Cart
 
 }  // namespace
 
+std::string merge_segment_rows(const std::vector<std::string>& parts) {
+  std::string header;
+  struct Row {
+    std::array<long, 3> kji;
+    std::string_view text;
+  };
+  std::vector<Row> rows;
+  for (const std::string& part : parts) {
+    std::size_t at = part.find('\n');
+    if (at == std::string::npos) continue;
+    if (header.empty()) header = part.substr(0, at + 1);
+    for (++at; at < part.size();) {
+      const std::size_t end = std::min(part.find('\n', at), part.size() - 1) + 1;
+      const std::string_view line(part.data() + at, end - at);
+      long ijk[3] = {0, 0, 0};
+      std::size_t pos = 0;
+      for (long& v : ijk) {  // the first three columns: i, j, k
+        const std::size_t comma = line.find(',', pos);
+        v = std::stol(std::string(line.substr(pos, comma - pos)));
+        pos = comma + 1;
+      }
+      rows.push_back({{ijk[2], ijk[1], ijk[0]}, line});
+      at = end;
+    }
+  }
+  // By cell in the mesh's order; a cell's rows come from one block, in its order (stable).
+  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.kji < b.kji; });
+  std::string out = header;
+  for (const Row& r : rows) out += r.text;
+  return out;
+}
+
+std::vector<EmbeddedMassAccount> embedded_mass_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  std::vector<EmbeddedMassAccount> acc = sim.embedded_mass_account();
+  std::vector<double> flat;
+  for (const auto& a : acc) flat.insert(flat.end(), {a.walls, a.cells});
+  comm.sum(flat);
+  for (std::size_t k = 0; k < acc.size(); ++k) acc[k] = {flat[2 * k], flat[2 * k + 1]};
+  return acc;
+}
+
+double embedded_cells_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  std::vector<double> n{static_cast<double>(sim.embedded().own_ghosts)};
+  comm.sum(n);
+  return n[0];
+}
+
 std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
   return summed(sim.totals(), comm);
 }
@@ -47,8 +98,7 @@ void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulatio
   if (comm.size() == 1) return write_snapshot(series, sim);  // with the embedded interface segments
   const FluidScene& s = sim.scene();
   const SnapshotFields fields(sim);
-  io::UniformGrid g{s.dim, s.cells, s.lower, {1, 1, 1}};
-  for (int d = 0; d < s.dim; ++d) g.spacing[d] = (s.upper[d] - s.lower[d]) / s.cells[d];
+  const io::UniformGrid g = snapshot_grid(s);
   io::GridPart part;
   for (int d = 0; d < 3; ++d) {
     part.lower[d] = comm.block().lower[d];
@@ -58,6 +108,12 @@ void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulatio
   const std::unique_ptr<io::CollectiveWrite> together = comm.collective_write();
   const std::filesystem::path h5 = series.write_part(sim.time(), sim.steps(), g, part, fields.views, *together);
   if (index == 0 && comm.rank() == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
+  const std::string segments = sim.interface_segments_csv();  // this block's cells' rows
+  if (!comm.any(!segments.empty())) return;
+  const std::vector<std::string> parts = comm.gather_text(segments);
+  if (comm.rank() == 0)
+    io::write_file_atomically(h5.parent_path() / fmt::format("fluid_interface_{:06d}.csv", index),
+                              merge_segment_rows(parts));
 }
 
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
@@ -76,16 +132,11 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
   std::vector<double> accounts = sim.account_values();
   comm.sum(accounts);
   if (comm.rank() == 0) {
-    const std::size_t inflow = accounts.size() - 2 * static_cast<std::size_t>(sim.scene().num_phases());
     checkpoint::PartWriter w(dir / kFluidPart, "fluid");
     w.put_integer("cycle", run.cycle);
     w.put_scalar("time", run.time);
-    w.put("fluid.conserved_cells", global);
-    w.put("fluid.boundary_inflow", std::span<const double>(accounts.data(), inflow));
-    w.put("fluid.embedded_mass", std::span<const double>(accounts.data() + inflow, accounts.size() - inflow));
-    w.put_scalar("fluid.time", sim.time());
-    w.put_integer("fluid.steps", sim.steps());
-    w.put_integer("fluid.conserved_vars", vars);
+    write_fluid_state(w, {std::move(global), std::move(accounts), sim.time(), sim.steps(), vars, sim.body_state()},
+                      2 * static_cast<std::size_t>(sim.scene().num_phases()));
     checkpoint::put_series(w, "fluid", series);
     w.put_text("run.start_totals", run.start_totals.dump());
     w.put_text("run.counters", run.counters.dump());
@@ -106,18 +157,14 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
   if (comm.rank() == 0) {
     try {
       const checkpoint::PartReader r = checkpoint::open_verified_part(set, kFluidPart, "fluid");
-      if (r.integer("fluid.conserved_vars") != vars)
-        throw std::runtime_error(fmt::format("{}: {} conserved variables per cell, this scene has {}",
-                                             r.path().string(), r.integer("fluid.conserved_vars"), vars));
-      cells = r.doubles("fluid.conserved_cells", static_cast<std::size_t>(vars) * global_cells);
-      std::vector<double> accounts = r.doubles("fluid.boundary_inflow");
-      const std::vector<double> em = r.doubles("fluid.embedded_mass");
-      accounts.insert(accounts.end(), em.begin(), em.end());
+      FluidStateEntries e = read_fluid_state(r, vars, global_cells, sim.body_state().size());
+      cells = std::move(e.conserved);
       head = {{"cycle", r.integer("cycle")},
               {"run_time", r.scalar("time")},
-              {"time", r.scalar("fluid.time")},
-              {"steps", r.integer("fluid.steps")},
-              {"accounts", accounts},
+              {"time", e.time},
+              {"steps", e.steps},
+              {"accounts", e.accounts},
+              {"body_vertices", e.body_vertices},
               {"start_totals", r.text("run.start_totals")},
               {"counters", r.text("run.counters")}};
       checkpoint::resume_series(r, "fluid", series);
@@ -144,6 +191,10 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
   std::vector<double> accounts = head["accounts"].get<std::vector<double>>();
   if (comm.rank() != 0) std::fill(accounts.begin(), accounts.end(), 0.0);
   sim.restore_progress(head["time"].get<double>(), head["steps"].get<long>(), accounts);
+  // The bodies where the set left them, cut anew with the restored state (every block together; JSON keeps the
+  // doubles exact).
+  const std::vector<double> vertices = head["body_vertices"].get<std::vector<double>>();
+  if (!vertices.empty()) sim.set_body_state(vertices);
   FluidRunState run;
   run.cycle = head["cycle"].get<long>();
   run.time = head["run_time"].get<double>();

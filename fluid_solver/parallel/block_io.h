@@ -18,6 +18,13 @@ namespace cosim::fluid {
 std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 
+// The embedded bodies' mass accounts and ghost and solid-cut cells of the whole mesh (sums over the blocks).
+std::vector<EmbeddedMassAccount> embedded_mass_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
+double embedded_cells_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
+// The interface segment CSVs of the blocks (their own cells' rows) as one rank's file: the rows by cell in the mesh's
+// order (rows of one cell keep their order).
+std::string merge_segment_rows(const std::vector<std::string>& parts);
+
 // The snapshot of the whole mesh; every rank keeps its `series` (rank 0's publishes the files).
 void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
                                 const parallel::CartComm& comm);

@@ -2,15 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace cosim::fluid {
 
 parallel::Layout fluid_layout(const FluidScene& scene, int ranks) {
-  if (ranks > 1 && !scene.embedded.bodies.empty())
-    throw std::invalid_argument(fmt::format(
-        "{} ranks: a scene with embedded bodies runs on one rank for now (its bodies' geometry is not split yet)",
-        ranks));
   if (ranks > 1 && scene.coupled)
     throw std::invalid_argument(
         fmt::format("{} ranks: a coupled fluid runs on one rank for now (the coupler serves one fluid process)", ranks));
@@ -53,6 +50,41 @@ void CartBlockLinks::exchange_ghosts(FieldArray& W, int d) {
   vars_.resize(static_cast<std::size_t>(W.vars));
   for (int v = 0; v < W.vars; ++v) vars_[static_cast<std::size_t>(v)] = W.var(v);
   comm_.exchange_ghosts(vars_.data(), W.vars, box_, d);
+}
+
+const std::vector<std::size_t>& CartBlockLinks::plan_far(int channel, const std::vector<std::array<int, 3>>& cells) {
+  // The owner of a cell: the block holding it, or for a cell outside the mesh (a ghost layer of the mesh's edge) the
+  // block at that edge, whose ghost layer it is.
+  const parallel::Layout& layout = comm_.layout();
+  const parallel::Index3& mesh = comm_.cells();
+  std::vector<int> owner(cells.size());
+  std::vector<long> index(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    parallel::Index3 inside = cells[i];
+    for (int d = 0; d < box_.dim; ++d) inside[d] = std::clamp(inside[d], 0, mesh[d] - 1);
+    owner[i] = parallel::owner_of(layout, inside, mesh);
+    const parallel::Block b = parallel::block_of(layout, owner[i], mesh);
+    long at = 0, stride = 1;
+    for (int d = 0; d < 3; ++d) {
+      const int ng = d < box_.dim ? box_.ng : 0;
+      const int padded = b.upper[d] - b.lower[d] + 2 * ng;
+      const int local = cells[i][d] - b.lower[d] + ng;
+      if (local < 0 || local >= padded)
+        throw std::logic_error(fmt::format("cell {} along axis {} is not held by rank {}", cells[i][d], d, owner[i]));
+      at += stride * local;
+      stride *= padded;
+    }
+    index[i] = at;
+  }
+  parallel::SparsePlan& plan = far_plans_[static_cast<std::size_t>(channel)];
+  plan = comm_.plan_sparse(owner, index);
+  std::vector<std::size_t>& send = far_send_[static_cast<std::size_t>(channel)];
+  send.assign(plan.send_index.begin(), plan.send_index.end());
+  return send;
+}
+
+void CartBlockLinks::exchange_far(int channel, const double* send, double* recv, int width) {
+  comm_.exchange_sparse(far_plans_[static_cast<std::size_t>(channel)], send, recv, width);
 }
 
 }  // namespace cosim::fluid

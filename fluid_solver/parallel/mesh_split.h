@@ -31,11 +31,19 @@ class CartBlockLinks final : public BlockLinks {
   CartBlockLinks(parallel::CartComm& comm, const FluidScene& scene);
   void exchange_ghosts(FieldArray& W, int d) override;
   double max_over_blocks(double local) override { return comm_.max(local); }
+  const std::vector<std::size_t>& plan_far(int channel, const std::vector<std::array<int, 3>>& cells) override;
+  const std::vector<std::size_t>& far_send(int channel) const override {
+    return far_send_[static_cast<std::size_t>(channel)];
+  }
+  void exchange_far(int channel, const double* send, double* recv, int width) override;
+  bool any(bool local) override { return comm_.any(local); }
 
  private:
   parallel::CartComm& comm_;
   parallel::PaddedBox box_;
   std::vector<double*> vars_;
+  std::array<parallel::SparsePlan, 2> far_plans_;
+  std::array<std::vector<std::size_t>, 2> far_send_;
 };
 
 }  // namespace cosim::fluid

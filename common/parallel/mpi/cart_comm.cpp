@@ -263,6 +263,97 @@ std::vector<double> CartComm::scatter_cells(std::span<const double> global, int 
   return local;
 }
 
+SparsePlan CartComm::plan_sparse(std::span<const int> owner, std::span<const long> index) const {
+  SparsePlan plan;
+  plan.requests = owner.size();
+  if (!comm_) {
+    if (!owner.empty()) throw std::logic_error("a sparse exchange of cells on one block");
+    return plan;
+  }
+  const int ranks = size();
+  // The requests grouped by owner (stable: in request order within an owner).
+  std::vector<std::size_t> order(owner.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return owner[a] < owner[b]; });
+  std::vector<int> want(static_cast<std::size_t>(ranks), 0), give(static_cast<std::size_t>(ranks), 0);
+  for (const int o : owner) {
+    if (o < 0 || o >= ranks || o == rank_)
+      throw std::logic_error(fmt::format("rank {}: a sparse request of a cell of rank {}", rank_, o));
+    ++want[static_cast<std::size_t>(o)];
+  }
+  MPI_Request r;
+  MPI_Ialltoall(want.data(), 1, MPI_INT, give.data(), 1, MPI_INT, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  std::vector<int> sdispl(static_cast<std::size_t>(ranks), 0), rdispl(static_cast<std::size_t>(ranks), 0);
+  for (int q = 1; q < ranks; ++q) {
+    sdispl[q] = sdispl[q - 1] + want[q - 1];
+    rdispl[q] = rdispl[q - 1] + give[q - 1];
+  }
+  std::vector<long> asked(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) asked[i] = index[order[i]];
+  plan.send_index.resize(static_cast<std::size_t>(rdispl[ranks - 1] + give[ranks - 1]));
+  MPI_Ialltoallv(asked.data(), want.data(), sdispl.data(), MPI_LONG, plan.send_index.data(), give.data(), rdispl.data(),
+                 MPI_LONG, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  for (int q = 0; q < ranks; ++q) {
+    if (give[q] > 0) {
+      plan.send_ranks.push_back(q);
+      plan.send_counts.push_back(give[q]);
+    }
+    if (want[q] > 0) {
+      plan.recv_ranks.push_back(q);
+      plan.recv_counts.push_back(want[q]);
+    }
+  }
+  plan.recv_slot = std::move(order);
+  return plan;
+}
+
+void CartComm::exchange_sparse(const SparsePlan& plan, const double* send, double* recv, int width) {
+  if (!comm_ || (plan.send_ranks.empty() && plan.recv_ranks.empty())) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t w = static_cast<std::size_t>(width);
+  sparse_recv_.resize(plan.requests * w);
+  std::vector<MPI_Request> req(plan.send_ranks.size() + plan.recv_ranks.size());
+  std::size_t n = 0, at = 0;
+  for (std::size_t q = 0; q < plan.recv_ranks.size(); ++q) {
+    const std::size_t c = static_cast<std::size_t>(plan.recv_counts[q]) * w;
+    MPI_Irecv(sparse_recv_.data() + at, static_cast<int>(c), MPI_DOUBLE, plan.recv_ranks[q], 16, as_comm(comm_),
+              &req[n++]);
+    at += c;
+  }
+  at = 0;
+  for (std::size_t q = 0; q < plan.send_ranks.size(); ++q) {
+    const std::size_t c = static_cast<std::size_t>(plan.send_counts[q]) * w;
+    MPI_Isend(send + at, static_cast<int>(c), MPI_DOUBLE, plan.send_ranks[q], 16, as_comm(comm_), &req[n++]);
+    at += c;
+    sparse_bytes_ += 8.0 * static_cast<double>(c);
+  }
+  wait_passively(static_cast<int>(n), req.data());
+  for (std::size_t i = 0; i < plan.recv_slot.size(); ++i)
+    std::copy(sparse_recv_.begin() + static_cast<std::ptrdiff_t>(i * w),
+              sparse_recv_.begin() + static_cast<std::ptrdiff_t>((i + 1) * w), recv + plan.recv_slot[i] * w);
+  halo_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<std::string> CartComm::gather_text(const std::string& local) const {
+  if (!comm_) return {local};
+  const int ranks = size();
+  int n = static_cast<int>(local.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), displs(static_cast<std::size_t>(ranks), 0);
+  MPI_Request r;
+  MPI_Igather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  for (int q = 1; q < ranks; ++q) displs[q] = displs[q - 1] + counts[q - 1];
+  std::string all(rank_ == 0 ? static_cast<std::size_t>(displs[ranks - 1] + counts[ranks - 1]) : 0, '\0');
+  MPI_Igatherv(local.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR, 0, as_comm(comm_), &r);
+  wait_passively(1, &r);
+  if (rank_ != 0) return {};
+  std::vector<std::string> out;
+  for (int q = 0; q < ranks; ++q) out.push_back(all.substr(static_cast<std::size_t>(displs[q]), counts[q]));
+  return out;
+}
+
 std::string CartComm::broadcast(const std::string& from_root) const {
   if (!comm_) return from_root;
   long n = static_cast<long>(from_root.size());

@@ -60,6 +60,16 @@ struct PaddedBox {
   }
 };
 
+// A sparse exchange of single cells between any blocks (the cells the embedded bodies' records read beyond the ghost
+// layers), set up once per set of cells by CartComm::plan_sparse and used many times by exchange_sparse.
+struct SparsePlan {
+  std::vector<int> send_ranks, send_counts;  // the ranks this one sends to, and how many cells each
+  std::vector<int> recv_ranks, recv_counts;  // the ranks it receives from (the owners of its requests)
+  std::vector<long> send_index;              // the cells to send (indices at this rank), grouped by send_ranks
+  std::vector<std::size_t> recv_slot;        // where each received cell goes in the request list, in arrival order
+  std::size_t requests = 0;
+};
+
 class CartComm {
  public:
   // The layout's blocks over the session's ranks (layout.ranks() must equal session.size()); periodic[d]: the blocks
@@ -94,6 +104,17 @@ class CartComm {
   // elsewhere), and the reverse: rank 0's global array cut into each rank's block.
   std::vector<double> gather_cells(std::span<const double> local, int ncomp) const;
   std::vector<double> scatter_cells(std::span<const double> global, int ncomp) const;
+  // Sets up a sparse exchange: this rank needs the cells index[i] of rank owner[i] (each another rank). Collective
+  // (every rank calls it, with or without requests). The plan's send_index tells which of its cells this rank must
+  // pack, in order, for exchange_sparse.
+  SparsePlan plan_sparse(std::span<const int> owner, std::span<const long> index) const;
+  // Sends `width` values per cell of plan.send_index (packed in that order in `send`) and receives `width` values per
+  // requested cell into `recv`, in the order of the requests. Point to point with the plan's ranks only; the bytes
+  // count into sparse_bytes().
+  void exchange_sparse(const SparsePlan& plan, const double* send, double* recv, int width);
+  double sparse_bytes() const { return sparse_bytes_; }
+  // Every rank's text on rank 0, in rank order (empty elsewhere).
+  std::vector<std::string> gather_text(const std::string& local) const;
   // Rank 0's bytes to every rank.
   std::string broadcast(const std::string& from_root) const;
   void barrier() const;
@@ -109,7 +130,8 @@ class CartComm {
   std::array<std::array<int, 2>, 3> neighbour_{{{-1, -1}, {-1, -1}, {-1, -1}}};
   void* comm_ = nullptr;  // MPI_Comm of the Cartesian topology (MPI stays out of this header)
   std::vector<double> send_[2], recv_[2];
-  double halo_bytes_ = 0, halo_seconds_ = 0, halo_wait_seconds_ = 0;
+  double halo_bytes_ = 0, halo_seconds_ = 0, halo_wait_seconds_ = 0, sparse_bytes_ = 0;
+  std::vector<double> sparse_recv_;
 };
 
 }  // namespace cosim::parallel
