@@ -26,6 +26,8 @@ int guarded(const std::function<void()>& f) {
     return fail(COSIM_E_PROTOCOL, e.what());
   } catch (const coupling::RunStopped& e) {
     return fail(COSIM_E_STOPPED, e.what());
+  } catch (const client_detail::Corrupt& e) {
+    return fail(COSIM_E_CORRUPT, e.what());
   } catch (const config::ConfigError& e) { return fail(COSIM_E_SCENE, e.what()); } catch (const YAML::Exception& e) {
     return fail(COSIM_E_SCENE, e.what());
   } catch (const std::logic_error& e) {  // invalid_argument, out_of_range, a call out of order

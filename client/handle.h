@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct cosim_client {
 };
 
 namespace cosim::client_detail {
+
+// A checkpoint set or part that does not match its manifest (COSIM_E_CORRUPT).
+struct Corrupt : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // Records `message` as this thread's last error and returns `code`.
 int fail(int code, const std::string& message);

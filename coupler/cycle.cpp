@@ -58,6 +58,7 @@ struct Loop {
 
   coupling::Faces last_faces;  // of the last cycle, for the interface snapshots
   coupling::InterfaceStates last_states;
+  coupling::FluidSamples last_samples;  // of the last cycle (after the predictor), for interface_phases.csv
   PressurePredictor predictor;
 
   // Timing of the open cycle: from its DtDecision to the next one (or the end of the run); a cycle that writes a
@@ -166,7 +167,8 @@ struct Loop {
 
     const coupling::Faces& faces = last_faces;
     pb::Envelope to_fluid = work([&] {
-      coupling::FluidSamples samples = coupling::from_pb(samples_msg.samples());
+      coupling::FluidSamples& samples = last_samples;
+      samples = coupling::from_pb(samples_msg.samples());
       if (samples.count != faces.count)
         hub.reject(Role::Fluid,
                    fmt::format("sent FluidSamples.count = {}, but the solid has {} faces", samples.count, faces.count));
@@ -193,7 +195,10 @@ struct Loop {
     hub.send(Role::Solid, to_solid);
 
     auto proposals = hub.expect_both(pb::Envelope::kDtProposal, n);
-    work([&] { history.record(n, t + dt, dt, faces, last_states); });
+    work([&] {
+      history.record(n, t + dt, dt, faces, last_states);
+      history.record_phases(n, t + dt, faces, last_samples, last_states, hub.peer(Role::Fluid).phase_names);
+    });
     return std::min(proposals[0].dt_proposal().dt(), proposals[1].dt_proposal().dt());
   }
 

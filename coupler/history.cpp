@@ -39,6 +39,11 @@ History::History(const std::filesystem::path& dir, const checkpoint::PartReader*
     try {
       checkpoint::resume_series(*resume, "interface", interface_);
     } catch (const std::exception& e) { throw app::InputError(e.what()); }
+    bool has_phases = false;  // the set of a one-phase run records no interface_phases.csv
+    try {
+      has_phases = resume->integer("log.interface_phases") >= 0;
+    } catch (const std::exception&) {}
+    if (has_phases) phases_.emplace(open(dir / "interface_phases.csv", "", resume, "interface_phases"));
   }
 }
 
@@ -46,6 +51,42 @@ void History::save(checkpoint::PartWriter& w) const {
   checkpoint::put_log(w, "interface_history", hist_);
   checkpoint::put_log(w, "timing", timing_);
   checkpoint::put_series(w, "interface", interface_);
+  if (phases_) checkpoint::put_log(w, "interface_phases", *phases_);
+}
+
+void History::record_phases(long cycle, double time, const coupling::Faces& faces,
+                            const coupling::FluidSamples& samples, const coupling::InterfaceStates& st,
+                            const std::vector<std::string>& names) {
+  const int np = st.phases, d = faces.dim;
+  const auto values = static_cast<std::size_t>(faces.count) * static_cast<std::size_t>(np);
+  if (np < 2 || samples.alpha.size() != values || st.pressure.size() != values ||
+      st.face_wetted.size() != static_cast<std::size_t>(faces.count))
+    return;
+  if (!phases_) {
+    std::string header = "cycle,time";
+    for (int k = 0; k < np; ++k) {
+      const std::string n = static_cast<std::size_t>(np) == names.size() ? names[k] : fmt::format("phase{}", k);
+      header += fmt::format(",{0}_force_x,{0}_force_y,{0}_force_z", n);
+    }
+    phases_.emplace(open(dir_ / "interface_phases.csv", header + "\n", nullptr, ""));
+  }
+  // The solid's face pressure is sum_k alpha_k p_I,k / sum_j alpha_j on wetted faces (interface_conditions):
+  // phase k's share of the force -sum p A n is its term of that sum.
+  std::vector<double> force(static_cast<std::size_t>(3 * np), 0.0);
+  for (int f = 0; f < faces.count; ++f) {
+    if (!st.face_wetted[f]) continue;
+    double sum_a = 0.0;
+    for (int k = 0; k < np; ++k) sum_a += samples.alpha[static_cast<std::size_t>(f) * np + k];
+    if (!(sum_a > 0.0)) continue;
+    for (int k = 0; k < np; ++k) {
+      const std::size_t i = static_cast<std::size_t>(f) * np + k;
+      const double load = samples.alpha[i] * st.pressure[i] / sum_a * faces.area[f];
+      for (int c = 0; c < d; ++c) force[3 * k + c] -= load * faces.normal[f * d + c];
+    }
+  }
+  std::string row = fmt::format("{},{:.12g}", cycle, time);
+  for (const double v : force) row += fmt::format(",{:.12g}", v);
+  append(*phases_, row + "\n");
 }
 
 void History::record(long cycle, double time, double dt, const coupling::Faces& faces,

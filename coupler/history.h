@@ -6,6 +6,10 @@
 //                          window, outputs excluded), coupler work (interface conditions, history, snapshots),
 //                          output (the solvers' snapshots and checkpoint parts on the critical path),
 //                          communication/wait [s] (CycleTiming::comm)
+//   interface_phases.csv   with two or more fluid phases: cycle, time [s], and per phase k the share of the force
+//                          on the solid that phase delivers, F_k = -sum_faces (alpha_k / sum_j alpha_j) p_I,k A n
+//                          [N] (x, y, z; columns <phase>_force_x ...): the face pressure the solid receives is
+//                          sum_k alpha_k p_I,k / sum_j alpha_j, so the F_k add up to interface_history's force
 //   progress.txt           one line "cycle time t_end", replaced at most twice a second (the launcher reads it)
 //   interface_NNNNNN.h5 + interface.xmf   at every output request: the interface faces (segments in 2D, quads
 //                          in 3D, as the solid sent them) with cell fields pressure, normal_velocity (u_I . n),
@@ -15,6 +19,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "common/checkpoint/part_file.h"
 #include "common/io/line_log.h"
@@ -54,6 +61,9 @@ class History {
   explicit History(const std::filesystem::path& dir, const checkpoint::PartReader* resume = nullptr);
   void save(checkpoint::PartWriter& w) const;
   void record(long cycle, double time, double dt, const coupling::Faces& faces, const coupling::InterfaceStates& st);
+  // interface_phases.csv's row (nothing with one phase); `names`: the fluid's phases, for the header.
+  void record_phases(long cycle, double time, const coupling::Faces& faces, const coupling::FluidSamples& samples,
+                     const coupling::InterfaceStates& st, const std::vector<std::string>& names);
   void record_timing(long cycle, const CycleTiming& timing);
   void progress(long cycle, double time, double t_end, double dt, bool force = false);
   // One interface snapshot; skipped when the faces carry no vertex data (or triangles).
@@ -62,6 +72,7 @@ class History {
  private:
   std::filesystem::path dir_;
   io::LineLog hist_, timing_;
+  std::optional<io::LineLog> phases_;  // interface_phases.csv, opened at the first two-phase row
   double last_progress_ = -1e300;
   io::SnapshotSeries interface_;
 };

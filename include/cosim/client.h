@@ -30,7 +30,8 @@ enum {
   COSIM_E_PROTOCOL = 5,  /* a malformed or unexpected message (the coupler has been told) */
   COSIM_E_STOPPED = 6,   /* the coupler stopped the run with a failure (the message is its reason) */
   COSIM_E_NOT_FOUND = 7, /* a scene key that is not there */
-  COSIM_E_FAILED = 8     /* anything else */
+  COSIM_E_FAILED = 8,    /* anything else */
+  COSIM_E_CORRUPT = 9    /* a checkpoint set or part that does not match its manifest (the message names the file) */
 };
 
 enum { COSIM_ROLE_FLUID = 1, COSIM_ROLE_SOLID = 2 };
@@ -148,6 +149,22 @@ COSIM_API int cosim_states_get(const cosim_client* c, int field, double* out, in
 COSIM_API int cosim_propose_dt(cosim_client* c, double dt); /* both, once per cycle [s] */
 /* Answers COSIM_CHECKPOINT: this solver's part (a file name in the set directory) is written. */
 COSIM_API int cosim_confirm_checkpoint(cosim_client* c, const char* part, long long bytes);
+
+/* Checkpoints (docs/checkpoint_restart.md; format cosim-checkpoint-set-2). A part is any bytes of the solver's
+ * choosing, one file in the set directory. */
+/* Answers COSIM_CHECKPOINT in one call: writes `bytes` of `data` as the file `part` in cosim_checkpoint_directory()
+ * (under a temporary name, fsynced and renamed: whole or absent), PART.sha256 beside it (sha256sum's format, from
+ * the bytes written; the coupler's manifest records it), and confirms the part to the coupler. */
+COSIM_API int cosim_write_part(cosim_client* c, const char* part, const void* data, long long bytes);
+/* Checks the part `part` of the checkpoint set directory `set` (the --restart argument) against the set's
+ * manifest.json: its format, its cycle against the directory's name, the part listed with a checksum, the file's
+ * size and SHA-256. COSIM_E_CORRUPT names the file and what differs. Out (each may be NULL): the part's size, its
+ * SHA-256 (64 hex digits and a NUL), the set's cycle and time (for cosim_set_restart). Needs no handle. */
+COSIM_API int cosim_client_verify_part(const char* set, const char* part, long long* bytes, char sha256[65],
+                                       long long* cycle, double* time);
+/* Reads the part into out[0..capacity) after the same checks, made on the bytes read (no second read that could
+ * differ); *length is the part's size (set also when capacity is too small: COSIM_E_ARGUMENT). */
+COSIM_API int cosim_read_part(const char* set, const char* part, void* out, long long capacity, long long* length);
 /* Of the work since the last message, `seconds` went into writing outputs (kept apart in the coupler's timing). */
 COSIM_API int cosim_add_output_seconds(cosim_client* c, double seconds);
 /* Tells the coupler this solver cannot go on (best effort; call it before exiting non-zero). */

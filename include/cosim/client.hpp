@@ -80,6 +80,32 @@ struct States {
   std::vector<double> face_pressure, face_normal_velocity, face_wetted, face_impedance;  // solid: count
 };
 
+// A checkpoint part as its set's manifest records it (verify_part).
+struct PartRecord {
+  long long bytes = 0;
+  std::string sha256;   // 64 hex digits
+  long long cycle = 0;  // the set's
+  double time = 0;
+};
+
+// Checks `part` of the set directory `set` against its manifest (cosim_client_verify_part); Error with code
+// COSIM_E_CORRUPT names the file and what differs.
+inline PartRecord verify_part(const std::string& set, const std::string& part) {
+  PartRecord r;
+  char sha[65] = {0};
+  check(cosim_client_verify_part(set.c_str(), part.c_str(), &r.bytes, sha, &r.cycle, &r.time));
+  r.sha256 = sha;
+  return r;
+}
+
+// The bytes of `part` of the set directory `set`, after the manifest's checks (cosim_read_part).
+inline std::vector<unsigned char> read_part(const std::string& set, const std::string& part) {
+  long long n = 0;
+  std::vector<unsigned char> out(static_cast<std::size_t>(verify_part(set, part).bytes));
+  check(cosim_read_part(set.c_str(), part.c_str(), out.data(), static_cast<long long>(out.size()), &n));
+  return out;
+}
+
 class Client {
  public:
   explicit Client(Role role) { check(cosim_create(&c_, static_cast<int>(role))); }
@@ -192,6 +218,10 @@ class Client {
   void propose_dt(double dt) { check(cosim_propose_dt(c_, dt)); }
   void confirm_checkpoint(const std::string& part, long long bytes) {
     check(cosim_confirm_checkpoint(c_, part.c_str(), bytes));
+  }
+  // Answers a Checkpoint directive: the part written with its digest file and confirmed (cosim_write_part).
+  void write_part(const std::string& part, const void* data, long long bytes) {
+    check(cosim_write_part(c_, part.c_str(), data, bytes));
   }
   void add_output_seconds(double s) { check(cosim_add_output_seconds(c_, s)); }
   void report_error(const std::string& reason) noexcept { cosim_report_error(c_, reason.c_str()); }

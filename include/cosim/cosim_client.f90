@@ -25,7 +25,7 @@ module cosim_client
 
   integer(c_int), parameter, public :: COSIM_OK = 0, COSIM_E_ARGUMENT = 1, COSIM_E_SCENE = 2, &
     COSIM_E_REFUSED = 3, COSIM_E_PEER_LOST = 4, COSIM_E_PROTOCOL = 5, COSIM_E_STOPPED = 6, &
-    COSIM_E_NOT_FOUND = 7, COSIM_E_FAILED = 8
+    COSIM_E_NOT_FOUND = 7, COSIM_E_FAILED = 8, COSIM_E_CORRUPT = 9
   integer(c_int), parameter, public :: COSIM_ROLE_FLUID = 1, COSIM_ROLE_SOLID = 2
   integer(c_int), parameter, public :: COSIM_ADVANCE = 0, COSIM_OUTPUT = 1, COSIM_CHECKPOINT = 2, COSIM_STOP = 3
   integer(c_int), parameter, public :: COSIM_MODE_IMPEDANCE = 0, COSIM_MODE_STANDARD = 1, &
@@ -270,6 +270,28 @@ module cosim_client
       character(kind=c_char), intent(in) :: part(*)
       integer(c_long_long), value :: bytes
     end function
+    integer(c_int) function write_part_c(c, part, data, bytes) bind(c, name="cosim_write_part")
+      import :: c_int, c_ptr, c_char, c_double, c_long_long
+      type(c_ptr), value :: c
+      character(kind=c_char), intent(in) :: part(*)
+      real(c_double), intent(in) :: data(*)
+      integer(c_long_long), value :: bytes
+    end function
+    integer(c_int) function verify_part_c(set, part, bytes, sha256, cycle, time) &
+      bind(c, name="cosim_client_verify_part")
+      import :: c_int, c_char, c_double, c_long_long
+      character(kind=c_char), intent(in) :: set(*), part(*)
+      integer(c_long_long), intent(out) :: bytes, cycle
+      character(kind=c_char), intent(out) :: sha256(65)
+      real(c_double), intent(out) :: time
+    end function
+    integer(c_int) function read_part_c(set, part, out, capacity, length) bind(c, name="cosim_read_part")
+      import :: c_int, c_char, c_double, c_long_long
+      character(kind=c_char), intent(in) :: set(*), part(*)
+      real(c_double), intent(out) :: out(*)
+      integer(c_long_long), value :: capacity
+      integer(c_long_long), intent(out) :: length
+    end function
     subroutine report_error_c(c, reason) bind(c, name="cosim_report_error")
       import :: c_ptr, c_char
       type(c_ptr), value :: c
@@ -285,7 +307,7 @@ module cosim_client
     cosim_scene_number, cosim_scene_numbers, cosim_scene_string, cosim_confirm_checkpoint, cosim_report_error, &
     cosim_set_endpoint, cosim_set_token, cosim_set_scene, cosim_add_override, cosim_set_scene_hash, &
     cosim_set_program, cosim_scene_file, cosim_out_dir, cosim_restart_set, cosim_stop_reason, &
-    cosim_checkpoint_directory
+    cosim_checkpoint_directory, cosim_write_part, cosim_client_verify_part, cosim_read_part
 
 contains
 
@@ -470,6 +492,50 @@ contains
     character(*), intent(in) :: part
     integer(c_long_long), intent(in) :: bytes
     ierr = confirm_checkpoint_c(c, cstr(part), bytes)
+  end function
+
+  ! Answers COSIM_CHECKPOINT in one call: `values` written as the file `part` of the set (whole or absent), its
+  ! SHA-256 beside it in PART.sha256, and the part confirmed to the coupler (cosim_write_part).
+  integer(c_int) function cosim_write_part(c, part, values) result(ierr)
+    type(c_ptr), intent(in) :: c
+    character(*), intent(in) :: part
+    real(c_double), intent(in) :: values(:)
+    ierr = write_part_c(c, cstr(part), values, int(size(values), c_long_long) * 8_c_long_long)
+  end function
+
+  ! Checks `part` of the checkpoint set directory `set` against its manifest (size, SHA-256, the set's cycle);
+  ! gives its size [bytes], SHA-256 (64 hex digits), the set's cycle and time. COSIM_E_CORRUPT names the file.
+  integer(c_int) function cosim_client_verify_part(set, part, bytes, sha256, cycle, time) result(ierr)
+    character(*), intent(in) :: set, part
+    integer(c_long_long), intent(out) :: bytes, cycle
+    character(len=64), intent(out) :: sha256
+    real(c_double), intent(out) :: time
+    character(kind=c_char) :: sha(65)
+    integer :: i
+    sha = c_null_char
+    ierr = verify_part_c(cstr(set), cstr(part), bytes, sha, cycle, time)
+    do i = 1, 64
+      sha256(i:i) = sha(i)
+    end do
+  end function
+
+  ! A part of doubles (written by cosim_write_part) into an allocatable array, after the manifest's checks made on
+  ! the bytes read.
+  integer(c_int) function cosim_read_part(set, part, values) result(ierr)
+    character(*), intent(in) :: set, part
+    real(c_double), allocatable, intent(out) :: values(:)
+    integer(c_long_long) :: bytes, cycle, length
+    character(len=64) :: sha
+    real(c_double) :: time
+    ierr = cosim_client_verify_part(set, part, bytes, sha, cycle, time)
+    if (ierr /= COSIM_OK) return
+    allocate (values(max(bytes / 8_c_long_long, 1_c_long_long)))
+    if (mod(bytes, 8_c_long_long) /= 0) then
+      ierr = COSIM_E_ARGUMENT
+      return
+    end if
+    ierr = read_part_c(cstr(set), cstr(part), values, bytes, length)
+    if (ierr == COSIM_OK) values = values(1:length / 8)
   end function
 
   ! Tells the coupler this solver cannot go on (call it before stopping with a non-zero code).

@@ -1,15 +1,20 @@
 // The coupling client as an outside solver gets it: `cmake --install` into a temporary prefix, the C and Fortran
 // rigid pistons of examples/clients/ built out of tree against it (CMake find_package; the Fortran one also with
 // pkg-config), each run as the solid of configs/piston_2d.yaml, and the piston's travel compared with the run of
-// the stock solid_solver and with the Python piston they port.
+// the stock solid_solver and with the Python piston they port. Both checkpoint their state through the library
+// (cosim_write_part) and resume from it (cosim_read_part): a restarted run ends bit for bit as the uninterrupted
+// one, and a corrupt part is refused by the launcher and by the piston itself, naming the file.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
+#include "common/checkpoint/checkpoint_sets.h"
 #include "tests/coupled/coupled_test_util.h"
+#include "tests/coupled/run_compare.h"
 
 using namespace cosim::test;
 
@@ -90,6 +95,53 @@ void run_as_solid(const fs::path& exe, const std::string& label) {
   EXPECT_GE(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;  // outputs at 0, 10, 20, 30 ms
 }
 
+// Runs `exe` as the solid with checkpoints, resumes a copy of the run from its first set and compares the two bit
+// for bit (snapshots, interface history, piston.csv); then flips one bit of the piston's part in the newest set:
+// `cosim run --restart` refuses that set naming the file, and so does the piston started on it by hand.
+void checkpoint_and_resume(const fs::path& exe, const std::string& label) {
+  const std::string args = kShort + " --set coupling.checkpoint.interval=0.012 --solid-exe '" + exe.string() + "'";
+  const fs::path full = run_dir("client_" + label + "_full"), resumed = run_dir("client_" + label + "_resumed");
+  ASSERT_EQ(cosim_run(scene_file("piston_2d"), full, args), 0) << run_logs(full);
+  const auto sets = cosim::checkpoint::complete_sets(full / "checkpoints");
+  ASSERT_EQ(sets.size(), 2u) << "sets after 12 and 24 ms";
+  for (const auto& s : sets) {
+    ASSERT_TRUE(fs::exists(s.dir / "solid.bin.sha256")) << s.dir;
+    EXPECT_NO_THROW(cosim::checkpoint::verify_set(s)) << s.dir;
+    EXPECT_EQ(s.manifest["checksums"]["solid.bin"]["bytes"].get<long>(), (9 + 2 * 4) * 8) << s.dir;  // 4 faces
+  }
+  fs::copy(full, resumed, fs::copy_options::recursive);
+  const std::string restart = bin("cosim").string() + " run " + scene_file("piston_2d").string() + " --restart " +
+                              resumed.string() + " --quiet " + args;
+  ASSERT_EQ(sh(restart + " --from " + std::to_string(sets.front().cycle) + " > " + resumed.string() + ".log 2>&1"), 0)
+      << read_text(resumed.string() + ".log") << run_logs(resumed);
+  std::printf("[ measured ] %s piston restarted from cycle %ld (t = %.6g s)\n", label.c_str(), sets.front().cycle,
+              sets.front().time);
+  EXPECT_NE(read_text(full / "solid" / "piston.csv"), "");
+  expect_same_runs(full, resumed, 3);
+
+  // One bit of the piston's x in the newest set flipped.
+  const fs::path part = sets.back().dir.string().replace(0, full.string().size(), resumed.string()) + "/solid.bin";
+  {
+    std::fstream f(part, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(3 * 8 + 5);
+    char c = 0;
+    f.read(&c, 1);
+    c ^= 0x04;
+    f.seekp(3 * 8 + 5);
+    f.write(&c, 1);
+  }
+  const std::string log = resumed.string() + ".corrupt.log";
+  EXPECT_EQ(sh(restart + " --from " + std::to_string(sets.back().cycle) + " > " + log + " 2>&1"), 2) << read_text(log);
+  EXPECT_NE(read_text(log).find(part.string() + ": SHA-256"), std::string::npos) << read_text(log);
+  const std::string by_hand = exe.string() + " " + scene_file("piston_2d").string() + " --out " +
+                              (resumed / "by_hand").string() + " --coupler ipc://" + (resumed / "none.sock").string() +
+                              " --restart " + part.parent_path().string() + " > " + log + " 2>&1";
+  EXPECT_EQ(sh(by_hand), 2) << read_text(log);
+  EXPECT_NE(read_text(log).find(part.string() + ": SHA-256"), std::string::npos) << read_text(log);
+  EXPECT_NE(read_text(log).find("the part is corrupt"), std::string::npos) << read_text(log);
+  EXPECT_FALSE(fs::exists(resumed / "by_hand" / "piston.csv")) << "nothing written from a corrupt part";
+}
+
 }  // namespace
 
 // What find_package and pkg-config users get: the shared library with its SONAME, the headers (no ZeroMQ or
@@ -137,6 +189,19 @@ TEST(ClientExamples, FortranPistonReplacesSolidSolver) {
   const fs::path exe = build_example("fortran");
   ASSERT_FALSE(exe.empty());
   run_as_solid(exe, "fortran");
+}
+
+TEST(ClientExamples, CPistonResumesFromItsCheckpointBitForBitAndRefusesACorruptPart) {
+  const fs::path exe = build_example("c");
+  ASSERT_FALSE(exe.empty());
+  checkpoint_and_resume(exe, "c");
+}
+
+TEST(ClientExamples, FortranPistonResumesFromItsCheckpointBitForBitAndRefusesACorruptPart) {
+  if (!have_gfortran()) GTEST_SKIP() << "gfortran is not installed (scripts/install_deps.sh installs it)";
+  const fs::path exe = build_example("fortran");
+  ASSERT_FALSE(exe.empty());
+  checkpoint_and_resume(exe, "fortran");
 }
 
 // The pkg-config route of examples/clients/fortran/CMakeLists.txt's comment: one gfortran line.

@@ -4,9 +4,16 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
+#include "common/checkpoint/checkpoint_sets.h"
+#include "common/util/sha256.h"
 #include "cosim/client.hpp"
+#include "tests/support/scratch_dir.h"
 
 namespace {
 
@@ -84,3 +91,57 @@ TEST(ClientLibrary, HelloWithoutACouplerTimesOut) {
 }
 
 }  // namespace
+
+// A checkpoint part as an outside solver reads it back (cosim_client_verify_part, cosim_read_part): the manifest's
+// size and SHA-256 of the part, the set's cycle and time; a flipped bit, a truncated part, a manifest moved to the
+// set of another cycle and a part the manifest does not list are refused, naming the file and what differs.
+TEST(ClientLibrary, ACheckpointPartIsReadOnlyWhenItMatchesItsManifest) {
+  namespace fs = std::filesystem;
+  const fs::path root = cosim::test::scratch_path("client_part_sets");
+  fs::remove_all(root);
+  const fs::path set = cosim::checkpoint::set_path(root, 42);
+  fs::create_directories(set);
+  const std::vector<double> state = {1.0, 42.0, 0.5, -1.25e-3, 3.0, 0.1, 7.0};
+  {
+    std::ofstream out(set / "solid.bin", std::ios::binary);
+    out.write(reinterpret_cast<const char*>(state.data()), static_cast<std::streamsize>(state.size() * 8));
+  }
+  cosim::checkpoint::write_manifest(set, 42, 0.5, {{"parts", {"solid.bin"}}});
+  const std::string expected_sha = cosim::util::sha256_of_file(set / "solid.bin").sha256;
+
+  const cosim::client::PartRecord r = cosim::client::verify_part(set.string(), "solid.bin");
+  EXPECT_EQ(r.bytes, 56);
+  EXPECT_EQ(r.sha256, expected_sha);
+  EXPECT_EQ(r.cycle, 42);
+  EXPECT_EQ(r.time, 0.5);
+  const std::vector<unsigned char> bytes = cosim::client::read_part(set.string(), "solid.bin");
+  ASSERT_EQ(bytes.size(), 56u);
+  EXPECT_EQ(std::memcmp(bytes.data(), state.data(), 56), 0);
+  // Too small a buffer: refused, the length said.
+  double small[2];
+  long long length = 0;
+  EXPECT_EQ(cosim_read_part(set.c_str(), "solid.bin", small, sizeof small, &length), COSIM_E_ARGUMENT);
+  EXPECT_EQ(length, 56);
+
+  const auto refused = [&](const fs::path& dir, const std::string& part, const std::string& what) {
+    long long n = 0;
+    double buffer[16];
+    EXPECT_EQ(cosim_read_part(dir.c_str(), part.c_str(), buffer, sizeof buffer, &n), COSIM_E_CORRUPT) << what;
+    const std::string message = cosim_last_error();
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+    EXPECT_EQ(cosim_client_verify_part(dir.c_str(), part.c_str(), nullptr, nullptr, nullptr, nullptr), COSIM_E_CORRUPT);
+  };
+  refused(set, "fluid.bin", "lists no part fluid.bin");
+  {  // one bit of the fourth double flipped
+    std::fstream f(set / "solid.bin", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(3 * 8 + 2);
+    f.put(static_cast<char>(reinterpret_cast<const unsigned char*>(&state[3])[2] ^ 0x10));
+  }
+  refused(set, "solid.bin", (set / "solid.bin").string() + ": SHA-256 ");
+  refused(set, "solid.bin", "the manifest recorded " + expected_sha + ": the part is corrupt");
+  fs::resize_file(set / "solid.bin", 48);
+  refused(set, "solid.bin", (set / "solid.bin").string() + ": 48 bytes, the manifest recorded 56");
+  const fs::path moved = cosim::checkpoint::set_path(root, 43);
+  fs::rename(set, moved);
+  refused(moved, "solid.bin", "says cycle 42, but the set is that of cycle 000000043");
+}

@@ -3,7 +3,8 @@
 // mass in the flow cells changes only by what crossed the domain boundary and the target's moving walls, to
 // round-off (fluid summary.json); on a free target
 // the impulse of the force the coupler reports equals the target's momentum; with a softer target (yield stress
-// lowered so that it yields at this resolution) the plastic work is positive and below the work done on it.
+// lowered so that it yields at this resolution) the plastic work is positive and below the work done on it. Each
+// phase's share of the force on the target (coupler/interface_phases.csv) adds up to the force.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -88,6 +89,30 @@ TEST(TungstenBlast, CompletesAndConservesEachPhaseApartFromTheBoundaryFluxes) {
   for (const auto& r : hist) peak = std::max(peak, r.at("pressure"));
   std::printf("peak mean face pressure %.3g Pa\n", peak);
   EXPECT_GT(peak, 50 * 1e5);
+  // Each phase's share of the force (coupler/interface_phases.csv) adds up to the force of every cycle, and both
+  // phases deliver a part of the impulse: the air's blast first, the particles' once the cloud arrives.
+  const auto phases = read_csv(dir / "coupler" / "interface_phases.csv");
+  ASSERT_EQ(phases.size(), hist.size());
+  double impulse_air = 0, impulse_tungsten = 0, worst = 0, scale = 0;
+  for (std::size_t i = 0; i < hist.size(); ++i) {
+    ASSERT_EQ(phases[i].at("cycle"), hist[i].at("cycle"));
+    for (const char* c : {"x", "y", "z"}) {
+      const std::string col = std::string("force_") + c;
+      const double sum = phases[i].at("air_" + col) + phases[i].at("tungsten_" + col);
+      worst = std::max(worst, std::abs(sum - hist[i].at(col)));
+      scale = std::max(scale, std::abs(hist[i].at(col)));
+    }
+    if (i + 1 < hist.size()) {
+      const double dt = hist[i + 1].at("time") - hist[i].at("time");
+      impulse_air += phases[i].at("air_force_x") * dt;
+      impulse_tungsten += phases[i].at("tungsten_force_x") * dt;
+    }
+  }
+  std::printf("impulse on the target: air %.6g N s, tungsten %.6g N s; phases vs force: %.1e N of %.3g N\n",
+              impulse_air, impulse_tungsten, worst, scale);
+  EXPECT_LT(worst, 1e-9 * scale);  // both rounded to 12 digits
+  EXPECT_GT(impulse_air, 0.0);
+  EXPECT_GT(impulse_tungsten, 0.0);
   const nlohmann::json acc = read_json(dir / "energy_account.json");
   std::printf("energy created at the interface: %.2e of the total\n", acc["interface_created_relative"].get<double>());
   EXPECT_LT(std::abs(acc["interface_created_relative"].get<double>()), 1e-2);

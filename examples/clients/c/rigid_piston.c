@@ -1,14 +1,17 @@
 /* A rigid piston as the solid of a coupled run, in C over libcosim_client: the physics of
  * python/cosim/rigid_piston.py (docs/clients.md).
  *
- *   rigid_piston SCENE --out DIR --coupler ENDPOINT [--token T] [--set key=value]...
+ *   rigid_piston SCENE --out DIR --coupler ENDPOINT [--token T] [--set key=value]... [--restart SET]
  *
  * The closed boundary of a rigid slab [left, right] x (the solid mesh's transverse box) moving along x: 2 points
  * (1D), 4 segments (2D) or 6 quads (3D) with their vertices. Newton's law under the interface pressures of the
  * previous cycle, symplectic Euler; under coupling.mode robin the face pressure follows the fluid's impedance Z
  * at the new velocity, taken implicitly: (m + theta dt K) v' = m v + dt (F + b - (1 - theta) K v),
  * K = sum Z A n_x^2, b = K v_sent, theta = max(1/2, 1 - m / (dt K)). Mass and geometry from the scene's solid:
- * box mesh with a rigid block named "piston". Writes DIR/piston.csv (t, x, v, F) at every output. */
+ * box mesh with a rigid block named "piston". Writes DIR/piston.csv (t, x, v, F) at every output; at a checkpoint
+ * its state as the part solid.bin of the set (cosim_write_part), which --restart SET resumes from after the
+ * library checked it against the set's manifest (cosim_client_verify_part, cosim_read_part). */
+#define _XOPEN_SOURCE 700 /* truncate() */
 #include <cosim/client.h>
 #include <errno.h>
 #include <math.h>
@@ -16,8 +19,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define MAX_FACES 6
+#define PART "solid.bin"
+/* The part: doubles, all exact. [0] layout version, [1] cycle, [2] time, [3] x, [4] v, [5] force, [6] v_sent,
+ * [7] bytes of piston.csv written, [8] face count n, then n face pressures and n impedances. */
+#define STATE_VERSION 1.0
+#define STATE_HEAD 9
+#define STATE_MAX (STATE_HEAD + 2 * MAX_FACES)
 
 typedef struct {
   double mass, area, left, right;
@@ -113,6 +123,27 @@ static void box_faces(const Piston* p, double x0, double x1, double v, Faces* f)
   }
 }
 
+/* The state of the set `set` (after the library's checks against its manifest) into the variables of main(). */
+static int restore(const char* set, int nf, double* state, long long* cycle) {
+  long long bytes = 0;
+  double time = 0;
+  if (cosim_client_verify_part(set, PART, NULL, NULL, cycle, &time) ||
+      cosim_read_part(set, PART, state, (long long)(STATE_MAX * sizeof(double)), &bytes)) {
+    fprintf(stderr, "[rigid_piston.c] error: --restart %s: %s\n", set, cosim_last_error());
+    return 0;
+  }
+  if (bytes != (long long)((STATE_HEAD + 2 * nf) * sizeof(double)) || state[0] != STATE_VERSION || state[8] != nf ||
+      state[1] != (double)*cycle) {
+    fprintf(stderr,
+            "[rigid_piston.c] error: --restart %s: %s/" PART
+            " is not this piston's state of cycle %lld (%lld bytes, "
+            "layout %g, %g faces, cycle %g)\n",
+            set, set, *cycle, bytes, state[0], state[8], state[1]);
+    return 0;
+  }
+  return 1;
+}
+
 static int failed(cosim_client* c, const char* what) {
   fprintf(stderr, "[rigid_piston.c] error: %s: %s\n", what, cosim_last_error());
   cosim_report_error(c, cosim_last_error());
@@ -124,11 +155,6 @@ int main(int argc, char** argv) {
   cosim_client* c = NULL;
   if (cosim_create(&c, COSIM_ROLE_SOLID) || cosim_parse_args(c, argc, argv)) {
     fprintf(stderr, "[rigid_piston.c] error: %s\n", cosim_last_error());
-    cosim_close(c);
-    return 2;
-  }
-  if (cosim_restart_set(c)[0]) {
-    fprintf(stderr, "[rigid_piston.c] error: --restart: this example does not restart from a checkpoint\n");
     cosim_close(c);
     return 2;
   }
@@ -147,13 +173,27 @@ int main(int argc, char** argv) {
 
   char path[4096];
   snprintf(path, sizeof path, "%s/piston.csv", cosim_out_dir(c));
-  FILE* out = mkdir(cosim_out_dir(c), 0777) == 0 || errno == EEXIST ? fopen(path, "w") : NULL;
+  const char* set = cosim_restart_set(c);
+  long long csv_bytes = 0;
+  if (set[0]) { /* the state of the set's cycle; piston.csv cut back to where it was then */
+    double state[STATE_MAX];
+    long long cycle = 0;
+    if (!restore(set, nf, state, &cycle) || cosim_set_restart(c, cycle, state[2])) {
+      cosim_close(c);
+      return 2;
+    }
+    x = state[3], v = state[4], force = state[5], v_sent = state[6], csv_bytes = (long long)state[7];
+    for (int i = 0; i < nf; ++i) pressure[i] = state[STATE_HEAD + i], z[i] = state[STATE_HEAD + nf + i];
+  }
+  FILE* out = NULL;
+  if (mkdir(cosim_out_dir(c), 0777) == 0 || errno == EEXIST)
+    out = set[0] ? (truncate(path, (off_t)csv_bytes) == 0 ? fopen(path, "a") : NULL) : fopen(path, "w");
   if (!out) {
-    fprintf(stderr, "[rigid_piston.c] error: cannot write %s\n", path);
+    fprintf(stderr, "[rigid_piston.c] error: cannot write %s: %s\n", path, strerror(errno));
     cosim_close(c);
     return 4;
   }
-  fprintf(out, "time,x,v,force\n");
+  if (!set[0]) fprintf(out, "time,x,v,force\n");
   if (cosim_hello(c)) return failed(c, "connect");
   for (;;) {
     cosim_directive d;
@@ -167,10 +207,13 @@ int main(int argc, char** argv) {
       fflush(out);
       continue;
     }
-    if (d.kind == COSIM_CHECKPOINT) { /* this example does not restart: it writes and confirms an empty part */
-      snprintf(path, sizeof path, "%s/solid.txt", cosim_checkpoint_directory(c));
-      FILE* ck = fopen(path, "w");
-      if (!ck || fclose(ck) || cosim_confirm_checkpoint(c, "solid.txt", 0)) return failed(c, "checkpoint");
+    if (d.kind == COSIM_CHECKPOINT) { /* the state as doubles (exact), written and confirmed by the library */
+      double state[STATE_MAX] = {STATE_VERSION, (double)cosim_cycle(c), cosim_time(c), x, v, force, v_sent, 0, nf};
+      fflush(out);
+      state[7] = (double)ftell(out);
+      for (int i = 0; i < nf; ++i) state[STATE_HEAD + i] = pressure[i], state[STATE_HEAD + nf + i] = z[i];
+      if (cosim_write_part(c, PART, state, (long long)((STATE_HEAD + 2 * nf) * sizeof(double))))
+        return failed(c, "checkpoint");
       continue;
     }
     const double dt = d.dt;

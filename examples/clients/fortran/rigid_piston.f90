@@ -1,17 +1,24 @@
 ! A rigid piston as the solid of a coupled run, in Fortran over libcosim_client: the physics of
 ! python/cosim/rigid_piston.py and examples/clients/c/rigid_piston.c (docs/clients.md).
 !
-!   rigid_piston SCENE --out DIR --coupler ENDPOINT [--token T] [--set key=value]...
+!   rigid_piston SCENE --out DIR --coupler ENDPOINT [--token T] [--set key=value]... [--restart SET]
 !
 ! The closed boundary of a rigid slab [left, right] x (the solid mesh's transverse box) moving along x. Newton's
 ! law under the interface pressures of the previous cycle, symplectic Euler; under coupling.mode robin the face
 ! pressure follows the fluid's impedance Z at the new velocity, taken implicitly. Mass and geometry from the
-! scene's solid: box mesh with a rigid block named "piston". Writes DIR/piston.csv (t, x, v, F) at every output.
+! scene's solid: box mesh with a rigid block named "piston". Writes DIR/piston.csv (t, x, v, F) at every output;
+! at a checkpoint its state as the part solid.bin of the set (cosim_write_part: the C piston's layout), which
+! --restart SET resumes from once the library checked it against the set's manifest (cosim_read_part).
 module piston_geometry
   use, intrinsic :: iso_c_binding
   use cosim_client
   implicit none
   integer, parameter :: max_faces = 6
+  ! The part: [1] layout version, [2] cycle, [3] time, [4] x, [5] v, [6] force, [7] v_sent, [8] bytes of
+  ! piston.csv written, [9] face count n, then n face pressures and n impedances (doubles, exact).
+  character(*), parameter :: part = "solid.bin"
+  integer, parameter :: state_head = 9
+  real(c_double), parameter :: state_version = 1
 
   type :: piston
     real(c_double) :: mass = 1, area = 1, left = -0.5_c_double, right = 0.5_c_double
@@ -151,7 +158,17 @@ program rigid_piston
   real(c_double) :: area(max_faces), nx(max_faces), pressure(max_faces), z(max_faces)
   integer(c_int) :: count, phases, n
   integer :: i, nf, unit, ios
+  integer(c_long_long) :: set_cycle, set_bytes, csv_bytes
+  real(c_double) :: set_time
+  real(c_double), allocatable :: state(:)
+  character(64) :: sha
+  character(:), allocatable :: set
   interface
+    integer(c_int) function truncate(path, length) bind(c, name="truncate")  ! POSIX: piston.csv on a restart
+      import :: c_int, c_char, c_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long), value :: length
+    end function
     integer(c_int) function mkdir(path, mode) bind(c, name="mkdir")  ! POSIX: the output directory
       import :: c_int, c_char
       character(kind=c_char), intent(in) :: path(*)
@@ -161,7 +178,6 @@ program rigid_piston
 
   if (cosim_create(c, COSIM_ROLE_SOLID) /= COSIM_OK) call stop_with(2, cosim_last_error())
   if (cosim_parse_command_line(c) /= COSIM_OK) call stop_with(2, cosim_last_error())
-  if (len(cosim_restart_set(c)) > 0) call stop_with(2, "--restart: this example does not restart from a checkpoint")
   if (cosim_set_program(c, "rigid_piston.f90") /= COSIM_OK) call stop_with(2, cosim_last_error())
   call piston_from_scene(c, p)
   call box_faces(p, p%left, p%right, 0.0_c_double, f)
@@ -177,10 +193,33 @@ program rigid_piston
   pressure = 0
   z = 0
 
+  set = cosim_restart_set(c)
+  if (len(set) > 0) then  ! the state of the set's cycle; piston.csv cut back to where it was then
+    if (cosim_client_verify_part(set, part, set_bytes, sha, set_cycle, set_time) /= COSIM_OK) &
+      call stop_with(2, "--restart "//set//": "//cosim_last_error())
+    if (cosim_read_part(set, part, state) /= COSIM_OK) call stop_with(2, "--restart "//set//": "//cosim_last_error())
+    if (size(state) /= state_head + 2 * nf .or. state(1) /= state_version .or. state(9) /= nf .or. &
+        state(2) /= real(set_cycle, c_double)) &
+      call stop_with(2, "--restart "//set//": "//set//"/"//part//" is not this piston's state of the set's cycle")
+    if (cosim_set_restart(c, set_cycle, state(3)) /= COSIM_OK) call stop_with(2, cosim_last_error())
+    x = state(4)
+    v = state(5)
+    force = state(6)
+    v_sent = state(7)
+    pressure(1:nf) = state(state_head + 1:state_head + nf)
+    z(1:nf) = state(state_head + nf + 1:state_head + 2 * nf)
+  end if
+
   ios = mkdir(cosim_out_dir(c)//c_null_char, int(o'777', c_int))  ! fails harmlessly when it exists
-  open (newunit=unit, file=cosim_out_dir(c)//"/piston.csv", status="replace", action="write", iostat=ios)
+  if (len(set) > 0) then
+    ios = truncate(cosim_out_dir(c)//"/piston.csv"//c_null_char, int(state(8), c_long))
+    if (ios == 0) open (newunit=unit, file=cosim_out_dir(c)//"/piston.csv", status="old", action="write", &
+                        position="append", iostat=ios)
+  else
+    open (newunit=unit, file=cosim_out_dir(c)//"/piston.csv", status="replace", action="write", iostat=ios)
+    if (ios == 0) write (unit, '(a)') "time,x,v,force"
+  end if
   if (ios /= 0) call stop_with(4, "cannot write "//cosim_out_dir(c)//"/piston.csv")
-  write (unit, '(a)') "time,x,v,force"
   if (cosim_hello(c) /= COSIM_OK) call fail("connect")
   do
     if (cosim_next(c, d) /= COSIM_OK) call fail("next")
@@ -193,10 +232,12 @@ program rigid_piston
       flush (unit)
       cycle
     end if
-    if (d%kind == COSIM_CHECKPOINT) then  ! this example does not restart: an empty part, confirmed
-      open (newunit=i, file=cosim_checkpoint_directory(c)//"/solid.txt", status="replace", iostat=ios)
-      if (ios == 0) close (i)
-      if (ios /= 0 .or. cosim_confirm_checkpoint(c, "solid.txt", 0_c_long_long) /= COSIM_OK) call fail("checkpoint")
+    if (d%kind == COSIM_CHECKPOINT) then  ! the state, written with its checksum and confirmed by the library
+      flush (unit)
+      inquire (unit=unit, size=csv_bytes)
+      state = [state_version, real(cosim_cycle(c), c_double), cosim_time(c), x, v, force, v_sent, &
+               real(csv_bytes, c_double), real(nf, c_double), pressure(1:nf), z(1:nf)]
+      if (cosim_write_part(c, part, state) /= COSIM_OK) call fail("checkpoint")
       cycle
     end if
     dt = d%dt
