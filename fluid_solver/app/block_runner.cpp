@@ -92,6 +92,11 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     if (comm->size() == 1) return 4;
     parallel::MpiSession::abort_all(4);
   }
+  if (root) {  // an earlier run's: a failing rank's summary is then the only one (fail_alone)
+    std::error_code ec;
+    std::filesystem::remove(opt.out_dir / "summary.json", ec);
+  }
+  comm->barrier();  // the folder exists, without an earlier summary, before any rank writes into it
   double cells = 1;
   for (int d = 0; d < scene.dim; ++d) cells *= scene.cells[d];
   const auto& blocks = comm->layout().blocks;
@@ -128,6 +133,10 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                             scene.block.first[1] + scene.block.count[1], scene.block.first[2],
                             scene.block.first[2] + scene.block.count[2]);
     spdlog::error("{}: {}", mpi.describe(), rec.error);
+    // Interrupted because another rank failed and aborted the run (mpirun's SIGTERM, also to the rank whose watchdog
+    // noticed a silent rank): the summary that rank wrote before its abort stays.
+    if (code == 130 && comm->size() > 1 && std::filesystem::exists(opt.out_dir / "summary.json"))
+      parallel::MpiSession::abort_all(code);
     rec.extra["parallel"] =
         parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds(), comm->halo_wait_seconds());
     rec.extra["parallel"]["failed_rank"] = comm->rank();

@@ -43,7 +43,7 @@ pids+=($!)
 for _ in $(seq 50); do [ -S "$work/munge.sock" ] && break; sleep 0.1; done
 
 host="$(hostname)"
-cpus="$(nproc)"
+cpus="$(nproc --all)"  # the machine's (plain nproc follows OMP_NUM_THREADS, which CTest sets to 1)
 mkdir -p "$work/state" "$work/spool"
 cat > "$work/slurm.conf" << CONF
 ClusterName=cosimtest
@@ -100,7 +100,9 @@ submit() {  # submit RUN OUTPUT [sbatch options] -- [cosim run arguments]
   local opts=()
   while [ "$1" != -- ]; do opts+=("$1"); shift; done
   shift
-  sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks=2 --ntasks-per-node=2 --cpus-per-task=1 \
+  # --overcommit: two tasks also on a one-core machine; a job that cannot start fails the test in 5 minutes, never
+  # waits for ever.
+  timeout 300 sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks=2 --ntasks-per-node=2 --cpus-per-task=1 --overcommit \
     --output="$output" --export="ALL,SCENE=$scene,RUN=$run,COSIM=$cosim" "${opts[@]}" "$job_script" "$@"
 }
 
