@@ -85,7 +85,11 @@ util::FileDigest recorded_digest(const fs::path& part) {
   return util::sha256_of_file(part);
 }
 
-std::string set_name(const fs::path& dir) { return dir.filename().string(); }
+// The set's folder name, also when the path ends in a separator (`--restart RUN/checkpoints/000000084/`).
+std::string set_name(const fs::path& dir) {
+  const fs::path p = dir.has_filename() ? dir : dir.parent_path();
+  return p.filename().string();
+}
 }  // namespace
 
 void write_manifest(const fs::path& dir, long cycle, double time, nlohmann::json m) {

@@ -265,6 +265,8 @@ TEST(CheckpointIntegrity, TheManifestRecordsEachPartsChecksumAndAFlippedBitIsRef
   EXPECT_EQ(s.manifest["checksums"]["coupler.h5"]["bytes"], fs::file_size(part));
   EXPECT_NO_THROW(verify_set(s));
   EXPECT_NO_THROW(open_verified_part(set_path(root, 200), "fluid.h5", "fluid"));
+  // A set named with a trailing separator, as a shell's completion writes it (`--restart .../000000200/`).
+  EXPECT_NO_THROW(open_verified_part(set_path(root, 200) / "", "fluid.h5", "fluid"));
   // One bit, in the middle of the data: the part is refused, the newest intact set is chosen and the refusal said.
   cosim::test::flip_bit(part, -100);
   std::string why = error_of([&] { verify_set(read_set(set_path(root, 200))); });
