@@ -85,6 +85,19 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     return true;
   });
   build_thin_body_faces<DIM>(g, e);
+  // The fluid fraction of a cell whose centre is less than its width along the normal from the surface: that of the
+  // plane (1/2 + phi / sum_d |n_d| dx_d, exact for a plane along a grid axis); the others are wholly on one side.
+  e.fluid_fraction.resize(g.total);
+  for (std::size_t c = 0; c < g.total; ++c) {
+    const double phi = geo.centres.phi[c];
+    double f = phi > 0 ? 1.0 : 0.0;
+    if (const embedded::BandPoint* bp = geo.centres.at(c)) {
+      double width = 0;
+      for (int d = 0; d < DIM; ++d) width += std::abs(bp->normal[d]) * g.dx[d];
+      if (width > 0 && std::abs(phi) < width) f = std::clamp(0.5 + phi / width, 0.0, 1.0);
+    }
+    e.fluid_fraction[c] = f;
+  }
   for (const auto& v : s.velocities) {
     double q = 0;
     for (int d = 0; d < DIM; ++d) q += v[d] * v[d];
@@ -131,6 +144,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
   std::vector<PhaseTotals> boundary_inflow() const override { return inner_->boundary_inflow(); }
   std::vector<EmbeddedMassAccount> embedded_mass_account() const override { return inner_->embedded_mass_account(); }
+  std::vector<PhaseTotals> embedded_wall_exchange() const override { return inner_->embedded_wall_exchange(); }
   void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
     inner_->cell_states(cells, count, out);
   }

@@ -70,6 +70,9 @@ struct EmbeddedState {
   std::array<std::vector<SideGhost>, 3> side_ghosts;  // per direction, sorted by flow cell then side
   std::array<std::vector<BlockedFace>, 3> blocked;    // per direction
   double max_wall_speed = 0;                          // for the time step
+  // Per padded cell, the part of its volume on the fluid side of the surface (the plane through the closest surface
+  // point with its normal, docs/methods.md §5.8); used by embedded.conservative. Empty: not computed.
+  std::vector<double> fluid_fraction;
 };
 
 }  // namespace cosim::fluid

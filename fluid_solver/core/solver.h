@@ -47,6 +47,7 @@ class Solver final : public FluidSimulation {
       : scene_(scene),
         g_(scene.cells, scene.lower, scene.upper, scene.block.first,
            scene.block.whole() ? scene.cells : scene.block.count),
+        conservative_(scene.embedded.conservative),
         gran_(NP == 2 && scene.exchange.dispersed && scene.exchange.granular.enabled),
         ncons_(Lay::cons_vars(gran_)),
         nprim_(Lay::prim_vars(gran_)) {
@@ -107,16 +108,32 @@ class Solver final : public FluidSimulation {
   }
 
   void set_embedded(EmbeddedState state, bool second_order) override {
-    if (emb_.active && state.active && state.kind.size() == emb_.kind.size()) {
-      // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs.
+    const bool changed = emb_.active && state.active && state.kind.size() == emb_.kind.size();
+    if (changed && !conservative_) {
+      // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs (the
+      // block's own cells: totals() counts no ghost layer).
       const double vol = g_.cell_volume();
-      for (std::size_t c = 0; c < emb_.kind.size(); ++c) {
-        const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
-        if (change != 0)
-          for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
-      }
+      for (int kk = 0; kk < g_.n[2]; ++kk)
+        for (int j = 0; j < g_.n[1]; ++j)
+          for (int i = 0; i < g_.n[0]; ++i) {
+            const std::size_t c = g_.index(i, j, kk);
+            const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
+            if (change != 0)
+              for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
+          }
     }
-    emb_ = std::move(state);
+    if (conservative_ && state.active) {  // solver_conservative.h
+      if (state.fluid_fraction.size() != state.kind.size())
+        throw std::invalid_argument("embedded.conservative: the geometry gave no fluid fractions of the cells");
+      const bool first = !emb_.active;
+      std::vector<std::uint8_t> before = std::move(emb_.kind);
+      emb_ = std::move(state);
+      fluid_volumes();
+      if (first) contents_from_densities();
+      else if (changed) redistribute_changed_cells(before);  // covered and uncovered cells
+    } else {
+      emb_ = std::move(state);
+    }
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
       std::sort(faces.begin(), faces.end(),
@@ -175,6 +192,7 @@ class Solver final : public FluidSimulation {
   void advance(double dt) override {
     step_inflow_.fill(0.0);
     step_wall_mass_.fill(0.0);
+    step_wall_.fill(0.0);
     // The stages compute the next stage's primitives row by row, but with an embedded boundary (whose wall
     // faces read the primitives of other rows during a sweep); the next step's stable_dt then finds them
     // ready. The last stage applies drag and heat exchange to each row it finishes, before its primitives.
@@ -194,6 +212,7 @@ class Solver final : public FluidSimulation {
     }
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     for (int k = 0; k < NP; ++k) mass_by_walls_[k] += step_wall_mass_[k];
+    for (std::size_t i = 0; i < wall_.size(); ++i) wall_[i] += step_wall_[i];
     t_ += dt;
     ++steps_;
   }
@@ -215,13 +234,14 @@ class Solver final : public FluidSimulation {
           double a = 1.0;
           if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
           const double m = U_.var(Lay::mass(k))[c];
-          const double rho = m / a;
+          const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
+          const double rho = m / av;
           double q = 0;
           for (int d = 0; d < DIM; ++d) {
             f.velocity[3 * o + d] = U_.var(Lay::mom(k, d))[c] / m;
             q += f.velocity[3 * o + d] * f.velocity[3 * o + d];
           }
-          const double rhoe = material_energy(U_, k, c) / a;
+          const double rhoe = material_energy(U_, k, c) / av;
           f.alpha[o] = a;
           f.rho[o] = rho;
           f.p[o] = eos_[k].pressure(rho, rhoe / rho);
@@ -246,8 +266,9 @@ class Solver final : public FluidSimulation {
           q += o.velocity[d] * o.velocity[d];
         }
         o.alpha = a;
-        o.rho = m / a;
-        const double rhoe = material_energy(U_, k, c) / a;
+        const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
+        o.rho = m / av;
+        const double rhoe = material_energy(U_, k, c) / av;
         o.p = eos_[k].pressure(o.rho, rhoe / o.rho);
         o.c = eos_[k].sound_speed(o.rho, o.p);
         if (k == 1 && gran_) o.granular = std::max(0.0, granular_per_mass(U_, c));
@@ -271,11 +292,22 @@ class Solver final : public FluidSimulation {
     return out;
   }
 
+  std::vector<PhaseTotals> embedded_wall_exchange() const override {
+    std::vector<PhaseTotals> out(NP);
+    for (int k = 0; k < NP; ++k) {
+      out[k].mass = wall_[fvar_flux(k, 0)];
+      for (int d = 0; d < DIM; ++d) out[k].momentum[d] = wall_[fvar_flux(k, 1 + d)];
+      out[k].energy = wall_[fvar_flux(k, 1 + DIM)];
+    }
+    return out;
+  }
+
   void save_state(checkpoint::PartWriter& w) const override {
     w.put("fluid.conserved_cells", conserved_cells());  // the ghosts are derived: a restart continues bit for bit
     const std::vector<double> acc = account_values();
     w.put("fluid.boundary_inflow", std::span<const double>(acc.data(), inflow_.size()));
     w.put("fluid.embedded_mass", std::span<const double>(acc.data() + inflow_.size(), 2 * NP));
+    w.put("fluid.embedded_wall_exchange", std::span<const double>(wall_.data(), wall_.size()));
     w.put_scalar("fluid.time", t_);
     w.put_integer("fluid.steps", steps_);
     w.put_integer("fluid.conserved_vars", ncons_);
@@ -289,6 +321,10 @@ class Solver final : public FluidSimulation {
     std::vector<double> acc = r.doubles("fluid.boundary_inflow", inflow_.size());
     const std::vector<double> em = r.doubles("fluid.embedded_mass", 2 * NP);
     acc.insert(acc.end(), em.begin(), em.end());
+    if (r.has("fluid.embedded_wall_exchange")) {  // older checkpoints: the wall exchange from the restart on
+      const std::vector<double> wx = r.doubles("fluid.embedded_wall_exchange", wall_.size());
+      acc.insert(acc.end(), wx.begin(), wx.end());
+    }
     restore_progress(r.scalar("fluid.time"), r.integer("fluid.steps"), acc);
   }
 
@@ -296,14 +332,20 @@ class Solver final : public FluidSimulation {
     std::vector<double> out(inflow_.begin(), inflow_.end());
     out.insert(out.end(), mass_by_walls_.begin(), mass_by_walls_.end());
     out.insert(out.end(), mass_by_cells_.begin(), mass_by_cells_.end());
+    out.insert(out.end(), wall_.begin(), wall_.end());
     return out;
   }
   void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
-    if (accounts.size() != inflow_.size() + 2 * NP)
-      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), inflow_.size() + 2 * NP));
-    std::copy(accounts.begin(), accounts.begin() + static_cast<std::ptrdiff_t>(inflow_.size()), inflow_.begin());
-    std::copy(accounts.end() - 2 * NP, accounts.end() - NP, mass_by_walls_.begin());
-    std::copy(accounts.end() - NP, accounts.end(), mass_by_cells_.begin());
+    // inflow, the embedded mass account and (absent in older checkpoints: zero) the wall exchange
+    const std::size_t base = inflow_.size() + 2 * NP;
+    if (accounts.size() != base && accounts.size() != base + wall_.size())
+      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), base + wall_.size()));
+    const auto at = [&](std::size_t i) { return accounts.begin() + static_cast<std::ptrdiff_t>(i); };
+    std::copy(at(0), at(inflow_.size()), inflow_.begin());
+    std::copy(at(inflow_.size()), at(inflow_.size() + NP), mass_by_walls_.begin());
+    std::copy(at(inflow_.size() + NP), at(base), mass_by_cells_.begin());
+    wall_.fill(0.0);
+    if (accounts.size() > base) std::copy(at(base), accounts.end(), wall_.begin());
     t_ = time;
     steps_ = steps;
     primitives_valid_ = false;
@@ -424,6 +466,7 @@ class Solver final : public FluidSimulation {
     double* trace = nullptr;     // 2 + DIM rows of faces: trace_faces' fluxes
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
     std::array<double, NP> flow_mass{};           // embedded runs: its mass rate into the flow cells [per second]
+    std::array<double, NP*(2 + DIM)> wall{};      // and what the wall faces put into them [per second]
     double bad = 0.0;                             // 1 when update_row's primitives found an inadmissible cell
     PassTimes pass;                               // seconds per pass of this thread (profiling on)
   };
@@ -517,10 +560,24 @@ class Solver final : public FluidSimulation {
   bool smooth_next_to_wall(const WallFace& wf, int k) const;
   template <int D, ReconMode RM>
   void blocked_face_fluxes(bool high_side, std::size_t base, int len, const double* left_edges, int left_off,
-                           const double* right_edges, int right_off, double* mini, double* face1, double* buf,
-                           std::size_t flen);
+                           const double* right_edges, int right_off, Scratch& sc, double* buf, std::size_t flen);
   template <int D, ReconMode RM>
   void fix_side_edges(std::size_t first, int count, double* edges) const;
+
+  // solver_conservative.h: the wall faces' fluxes (conservative: without mass), the wall exchange account, and
+  // the contents of the cells a moving body covers or uncovers.
+  void content_per_mass(int k, std::size_t c, double* q) const;
+  void wall_face_flux(Scratch& sc, std::size_t fc, double sign, double area, double* buf, std::size_t flen,
+                      int f) const;
+  template <int D>
+  void wall_face_row(Scratch& sc, std::size_t base, int len, double* buf, std::size_t flen, bool count_low,
+                     bool count_high) const;
+  void redistribute_changed_cells(std::vector<std::uint8_t>& before);
+  void fluid_volumes();
+  static constexpr double kMinFluidVolume = 0.5;  // a flow cell's centre is in the fluid: 1/2 for a plane
+  void contents_from_densities();
+  // A cell's fluid volume over its volume (embedded.conservative), else 1.
+  double fluid_volume(std::size_t c) const { return conservative_ && !vfrac_.empty() ? vfrac_[c] : 1.0; }
 
   // solver_exchange.h: instantaneous relaxations, drag and heat exchange.
   TwoPhaseRow<DIM> two_phase_row(std::size_t base);
@@ -550,6 +607,12 @@ class Solver final : public FluidSimulation {
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   // embedded_mass_account(): through the walls since the start and this step, with the cells covered or uncovered.
   std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
+  // embedded_wall_exchange(): what the wall faces put into the flow cells since the start and this step.
+  std::array<double, NP*(2 + DIM)> wall_{}, step_wall_{};
+  bool conservative_ = false;  // embedded.conservative (solver_conservative.h)
+  // Per padded cell: the fluid volume a flow cell stands for over the cell's volume (its own fluid fraction and a
+  // share of the fluid in the ghost cells next to it), and scratch for the shares.
+  std::vector<double> vfrac_, shares_;
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
   bool wall_second_order_ = true;
   bool profiling_ = false;  // per-pass clocks (set_pass_profiling)
@@ -564,6 +627,7 @@ class Solver final : public FluidSimulation {
 }  // namespace cosim::fluid
 
 // The member functions of the physics steps.
+#include "fluid_solver/core/solver_conservative.h"
 #include "fluid_solver/core/solver_embedded_faces.h"
 #include "fluid_solver/core/solver_exchange.h"
 #include "fluid_solver/core/solver_primitives.h"

@@ -30,6 +30,7 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
   for (auto& sc : scratch_) {
     sc.boundary.fill(0.0);
     sc.flow_mass.fill(0.0);
+    sc.wall.fill(0.0);
     sc.bad = 0.0;
   }
   const auto finish = [&](Scratch& sc, std::size_t base, int len, bool primitives_now) {
@@ -60,6 +61,12 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
       double f = 0;
       for (const auto& sc : scratch_) f += sc.flow_mass[k] - sc.boundary[fvar_flux(k, 0)];
       step_wall_mass_[k] = b * (step_wall_mass_[k] + dt * f);
+    }
+  if (emb_.active)
+    for (std::size_t i = 0; i < step_wall_.size(); ++i) {
+      double f = 0;
+      for (const auto& sc : scratch_) f += sc.wall[i];
+      step_wall_[i] = b * (step_wall_[i] + dt * f);
     }
 }
 
