@@ -576,6 +576,7 @@ class Solver final : public FluidSimulation {
   void fluid_volumes();
   static constexpr double kMinFluidVolume = 0.5;  // a flow cell's centre is in the fluid: 1/2 for a plane
   void contents_from_densities();
+  void contents_to_densities(std::size_t base, int len, bool to_density);
   // A cell's fluid volume over its volume (embedded.conservative), else 1.
   double fluid_volume(std::size_t c) const { return conservative_ && !vfrac_.empty() ? vfrac_[c] : 1.0; }
 

@@ -69,6 +69,20 @@ inline void Solver<DIM, NP, FK>::wall_face_row(Scratch& sc, std::size_t base, in
   }
 }
 
+// The `len` cells of a row from `base`: contents to densities (U / V, to_density) or back (U V); alpha stays.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::contents_to_densities(std::size_t base, int len, bool to_density) {
+  const double* v = vfrac_.data() + base;
+  for (int q = 0; q < ncons_; ++q) {
+    if (NP == 2 && q == Lay::alpha) continue;
+    double* u = U_.var(q) + base;
+    if (to_density)
+      for (int i = 0; i < len; ++i) u[i] /= v[i];
+    else
+      for (int i = 0; i < len; ++i) u[i] *= v[i];
+  }
+}
+
 // The fluid volume each flow cell stands for (vfrac_, in cell volumes; eq. 5.8.2): its own fluid fraction and, of
 // every ghost or solid-cut cell next to it across a wall face, that cell's fluid fraction shared equally among its
 // flow neighbours; at least kMinFluidVolume. The other cells hold densities (ghost states): 1.

@@ -110,6 +110,9 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
       }
     }
   }
+  // embedded.conservative: the relaxations and the exchange act on densities, U / V (§5.8), and give contents back.
+  const bool by_volume = NP == 2 && conservative_ && !vfrac_.empty();
+  if (by_volume) contents_to_densities(base, len, true);
   if constexpr (NP == 2) {
     PassClock clk(pass_acc(Pass::Relaxation));
     relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
@@ -120,6 +123,7 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
       PassClock clk(pass_acc(Pass::Exchange));
       exchange_cells(sc, base, len, exchange_dt);
     }
+  if (by_volume) contents_to_densities(base, len, false);
   if (fuse_primitives) {
     PassClock clk(pass_acc(Pass::Primitives));
     sc.bad = std::max(sc.bad, primitives_row(base, len));
