@@ -96,6 +96,25 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   return e;
 }
 
+// embedded.conservative (docs/methods.md §5.8): e.fluid_fraction per padded cell of g. The fluid fraction of a cell
+// whose centre is less than its width along the normal from the surface: that of the plane (1/2 + phi / sum_d |n_d|
+// dx_d, exact for a plane along a grid axis); the others are wholly on one side. A pass over every cell: only for a
+// conservative boundary.
+template <int DIM>
+void add_fluid_fractions(const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo, EmbeddedState& e) {
+  e.fluid_fraction.resize(g.total);
+  for (std::size_t c = 0; c < g.total; ++c) {
+    const double phi = geo.centres.phi[c];
+    double f = phi > 0 ? 1.0 : 0.0;
+    if (const embedded::BandPoint* bp = geo.centres.at(c)) {
+      double width = 0;
+      for (int d = 0; d < DIM; ++d) width += std::abs(bp->normal[d]) * g.dx[d];
+      if (width > 0 && std::abs(phi) < width) f = std::clamp(0.5 + phi / width, 0.0, 1.0);
+    }
+    e.fluid_fraction[c] = f;
+  }
+}
+
 // The interface segments of one cycle as CSV (FluidSimulation::interface_segments_csv), cells by global index.
 // On a block (geometry built on the margin grid E): only the segments of the block's own cells (Grid::owns), in the
 // whole mesh's order; the blocks' rows merged by cell are one rank's file (block_io.cpp).
@@ -128,7 +147,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
         g_(block_.whole() ? block_ : margin_grid(block_)),
         surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order),
-        ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
+        ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface),
+        conservative_(s.embedded.conservative) {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
     if (block_.whole()) update();
@@ -148,6 +168,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
   std::vector<PhaseTotals> boundary_inflow() const override { return inner_->boundary_inflow(); }
   std::vector<EmbeddedMassAccount> embedded_mass_account() const override { return inner_->embedded_mass_account(); }
+  std::vector<PhaseTotals> embedded_wall_exchange() const override { return inner_->embedded_wall_exchange(); }
   void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
     inner_->cell_states(cells, count, out);
   }
@@ -215,6 +236,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       }
       EmbeddedState st =
           to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      if (conservative_) add_fluid_fractions<DIM>(g_, geo_, st);
       st.own_ghosts = st.ghosts.size();
       inner_->set_embedded(std::move(st), second_order_);
     }
@@ -359,6 +381,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   embedded::EmbeddedGeometry<DIM> geo_;
   bool second_order_;
   bool ghost_wall_pressure_;
+  bool conservative_;                  // embedded.conservative: the cells' fluid fractions with each geometry
   std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;
 };
