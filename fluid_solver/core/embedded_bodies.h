@@ -192,13 +192,19 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   void set_pass_profiling(bool on) override { inner_->set_pass_profiling(on); }
   PassTimes pass_times() const override { return inner_->pass_times(); }
   // The bodies move with the flow's steps: their vertices belong to the state.
+  // A conservative boundary's wall pressures too: they were sampled before the step's redistribution, which the
+  // saved cells no longer show (without them a restart differs in the last digits).
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);
     w.put("fluid.embedded_vertices", body_state());
+    if (conservative_ && ghost_wall_pressure_) w.put("fluid.embedded_wall_pressure", wall_pressure_);
   }
   void restore_state(const checkpoint::PartReader& r) override {
     inner_->restore_state(r);
+    restored_wall_pressure_ = conservative_ && ghost_wall_pressure_ && r.has("fluid.embedded_wall_pressure");
+    if (restored_wall_pressure_) wall_pressure_ = r.doubles("fluid.embedded_wall_pressure", 2 * surface_.faces.size());
     set_body_state(r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size()));
+    restored_wall_pressure_ = false;
   }
   std::vector<double> body_state() const override {
     std::vector<double> x;
@@ -229,7 +235,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       update_block();
     } else {
       embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
-      if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
+      if (ghost_wall_pressure_ && !restored_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure at its wall
         const coupling::FluidSamples smp =
             interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
         wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
@@ -382,6 +388,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   bool second_order_;
   bool ghost_wall_pressure_;
   bool conservative_;                  // embedded.conservative: the cells' fluid fractions with each geometry
+  bool restored_wall_pressure_ = false;  // wall_pressure_ from a checkpoint set, for the restart's first geometry
   std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;
 };

@@ -109,7 +109,11 @@ class Solver final : public FluidSimulation {
   }
 
   void set_embedded(EmbeddedState state, bool second_order) override {
-    const bool changed = emb_.active && state.active && state.kind.size() == emb_.kind.size();
+    // After set_conserved_cells (a restart) the cells already hold the state of this geometry: nothing was covered or
+    // uncovered, and their contents are contents.
+    const bool restored = restored_cells_;
+    restored_cells_ = false;
+    const bool changed = !restored && emb_.active && state.active && state.kind.size() == emb_.kind.size();
     if (changed && !conservative_) {
       // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs (the
       // block's own cells: totals() counts no ghost layer).
@@ -123,7 +127,7 @@ class Solver final : public FluidSimulation {
     if (conservative_ && state.active) {  // solver_conservative.h; one rank only (fluid_layout)
       if (state.fluid_fraction.size() != state.kind.size())
         throw std::invalid_argument("embedded.conservative: the geometry gave no fluid fractions of the cells");
-      const bool first = !emb_.active;
+      const bool first = !emb_.active && !restored;
       std::vector<std::uint8_t> before = std::move(emb_.kind);
       emb_ = std::move(state);
       fluid_volumes();
@@ -365,6 +369,7 @@ class Solver final : public FluidSimulation {
         for (int j = 0; j < g_.n[1]; ++j, in += g_.n[0]) std::copy(in, in + g_.n[0], U_.var(v) + g_.index(0, j, k));
     U0_.data = U_.data;
     primitives_valid_ = false;
+    restored_cells_ = true;
   }
   void set_block_links(BlockLinks* links) override { links_ = links; }
 
@@ -604,6 +609,7 @@ class Solver final : public FluidSimulation {
   // embedded_wall_exchange(): what the wall faces put into the flow cells since the start and this step.
   std::array<double, NP*(2 + DIM)> wall_{}, step_wall_{};
   bool conservative_ = false;  // embedded.conservative (solver_conservative.h)
+  bool restored_cells_ = false;  // set_conserved_cells since the last set_embedded
   // Per padded cell: the fluid volume a flow cell stands for over the cell's volume (its own fluid fraction and a
   // share of the fluid in the ghost cells next to it), and scratch for the shares.
   std::vector<double> vfrac_, shares_;

@@ -153,8 +153,9 @@ inline void Solver<DIM, NP, FK>::blocked_face_fluxes(bool high_side, std::size_t
       for (int v = 0; v < Lay::kPrim; ++v) m1hi[v * len_e] = m1lo[v * len_e];
     }
     compute_faces<D, RM>(1, mini, 0, mini, 1, face1, 1);
-    if (high_side) wall_face_flux(sc, it->high.fluid_cell, 1.0, area, face1, 1, 0);
-    else wall_face_flux(sc, it->low.fluid_cell, -1.0, area, face1, 1, 0);
+    // In the wall exchange account on the block that owns the flow cell (Grid::owns; the x rows reach a ghost cell).
+    const std::size_t fc = high_side ? it->high.fluid_cell : it->low.fluid_cell;
+    wall_face_flux(sc, fc, high_side ? 1.0 : -1.0, g_.owns(fc) ? area : 0.0, face1, 1, 0);
     for (int v = 0; v < kFaceVars; ++v) buf[v * flen + f] = face1[v];
   }
 }

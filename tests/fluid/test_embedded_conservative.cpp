@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/checkpoint/part_file.h"
 #include "common/exact/exact_riemann.h"
+#include "fluid_solver/core/fluid_state_entries.h"
 #include "tests/support/scratch_dir.h"
 
 namespace cosim::fluid::test {
@@ -156,6 +158,71 @@ fluid:
   EXPECT_LT(b.mass, 1e-10);
   EXPECT_LT(b.energy, 1e-10);
   EXPECT_LT(b.momentum, 1e-10);
+}
+
+// A run stopped at a checkpoint set and restarted from it ends as the uninterrupted run: the totals, the wall
+// exchange account (fluid.embedded_wall_exchange in the set) and the mass account bit for bit, conservative or not
+// (the first geometry after the restart covers and uncovers nothing: the set's cells are already that geometry's).
+TEST(EmbeddedConservative, ARestartEndsAsTheUninterruptedRunWithItsAccounts) {
+  char scene[1024];
+  std::snprintf(scene, sizeof scene, kPistonBox, -0.2);
+  for (const std::string conservative : {"true", "false"}) {
+    const std::string sets =
+        "--set 'fluid.checkpoint={interval: 0.25, keep: 2}' --set fluid.output.interval=0.25 "
+        "--set fluid.embedded.conservative=" +
+        conservative;
+    const auto whole = run_summary("emb_cons_restart_whole", scene, sets);
+    const auto first = cosim::test::scratch_path("emb_cons_restart");
+    run_summary("emb_cons_restart", scene, sets + " --set fluid.time.end=0.25");
+    std::filesystem::path newest;
+    for (const auto& e : std::filesystem::directory_iterator(first / "out" / "checkpoints"))
+      if (e.is_directory() && e.path() > newest) newest = e.path();
+    ASSERT_FALSE(newest.empty()) << conservative;
+    const std::string cmd = std::string(COSIM_BINARY_DIR) + "/bin/fluid_solver " + (first / "scene.yaml").string() +
+                            " --quiet --out " + (first / "out").string() + " " + sets + " --restart " +
+                            newest.string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(first / "out" / "summary.json");
+    const nlohmann::json restarted = nlohmann::json::parse(in);
+    EXPECT_EQ(num(restarted["final_time"]), num(whole["final_time"])) << conservative;
+    EXPECT_EQ(restarted["totals"]["end"], whole["totals"]["end"]) << conservative;
+    EXPECT_EQ(restarted["embedded"]["wall_exchange"], whole["embedded"]["wall_exchange"]) << conservative;
+    EXPECT_EQ(restarted["embedded"]["mass"], whole["embedded"]["mass"]) << conservative;
+    EXPECT_NE(num(whole["embedded"]["wall_exchange"][0]["energy"]), 0.0) << conservative;
+  }
+}
+
+// The fluid part's entries (fluid_state_entries.h): the wall exchange account written after the others, and a part
+// from before it existed (no fluid.embedded_wall_exchange) read with the other accounts only.
+TEST(FluidStateEntries, TheWallExchangeIsWrittenAndAnOlderPartReadsWithoutIt) {
+  const auto dir = cosim::test::scratch_path("fluid_state_entries");
+  std::filesystem::create_directories(dir);
+  // One phase in 2D: 8 inflow values (mass, momentum[2], energy, per phase and side pair), 2 embedded, 4 wall.
+  const std::vector<double> inflow = {1, 2, 3, 4, 5, 6, 7, 8}, embedded = {0.5, -0.25}, wall = {0.0, 1.5, -2.5, 3.5};
+  std::vector<double> acc = inflow;
+  acc.insert(acc.end(), embedded.begin(), embedded.end());
+  const std::size_t base = acc.size();
+  acc.insert(acc.end(), wall.begin(), wall.end());
+  for (const bool with_wall : {true, false}) {
+    const auto path = dir / (with_wall ? "new.h5" : "old.h5");
+    {
+      checkpoint::PartWriter w(path, "fluid");
+      const std::vector<double> accounts(acc.begin(), with_wall ? acc.end() : acc.begin() + base);
+      write_fluid_state(w, {{1.0, 2.0, 3.0}, accounts, 0.75, 12, 3, {}}, embedded.size(), with_wall ? wall.size() : 0);
+      w.commit();
+    }
+    const checkpoint::PartReader r(path, "fluid");
+    EXPECT_EQ(r.has("fluid.embedded_wall_exchange"), with_wall);
+    const FluidStateEntries e = read_fluid_state(r, 3, 1, 0, inflow.size(), embedded.size(), wall.size());
+    EXPECT_EQ(e.accounts, std::vector<double>(acc.begin(), with_wall ? acc.end() : acc.begin() + base));
+    EXPECT_EQ(e.time, 0.75);
+    EXPECT_EQ(e.steps, 12);
+    EXPECT_EQ(e.conserved, (std::vector<double>{1.0, 2.0, 3.0}));
+    // A part whose wall exchange has another length (another dimension or phase count) is refused.
+    if (with_wall) {
+      EXPECT_THROW(read_fluid_state(r, 3, 1, 0, inflow.size(), embedded.size(), 2 * wall.size()), std::runtime_error);
+    }
+  }
 }
 
 }  // namespace
