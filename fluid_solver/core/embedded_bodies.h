@@ -387,7 +387,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   embedded::EmbeddedGeometry<DIM> geo_;
   bool second_order_;
   bool ghost_wall_pressure_;
-  bool conservative_;                  // embedded.conservative: the cells' fluid fractions with each geometry
+  bool conservative_;                    // embedded.conservative: the cells' fluid fractions with each geometry
   bool restored_wall_pressure_ = false;  // wall_pressure_ from a checkpoint set, for the restart's first geometry
   std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;

@@ -206,7 +206,8 @@ TEST(EmbeddedRanks, ACheckpointWithAMovingBodyRestartsOnAnotherRankCount) {
 // The conservative boundary's redistribution does not cross block borders yet: several ranks refuse the key before
 // anything runs (exit 2, no summary), one rank runs it.
 TEST(EmbeddedRanks, TheConservativeBoundaryIsRefusedOnSeveralRanksNamingTheKey) {
-  const std::string sets = "--set fluid.time.end=0.5 --set fluid.output.interval=0.5 --set fluid.embedded.conservative=true";
+  const std::string sets =
+      "--set fluid.time.end=0.5 --set fluid.output.interval=0.5 --set fluid.embedded.conservative=true";
   const auto one = scratch_path("emb_conservative_1");
   const RankRun r1 = run_fluid_ranks(1, scene_path("embedded_advection"), one, sets);
   ASSERT_EQ(r1.code, 0) << r1.log;
