@@ -200,6 +200,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   if (sim->embedded().active && comm->size() > 1) {
     rec.embedded_mass = embedded_mass_over_blocks(*sim, *comm);
     rec.embedded_cells = embedded_cells_over_blocks(*sim, *comm);
+    rec.embedded_wall = wall_exchange_over_blocks(*sim, *comm);
   }
   rec.wall = comm->max(rec.wall);
   std::vector<double> halo{comm->halo_bytes(), comm->sparse_bytes()};

@@ -18,6 +18,7 @@ struct RunRecord {
   // On a split mesh, the whole mesh's figures (every rank's sums); otherwise the simulation's own are taken.
   std::optional<std::vector<PhaseTotals>> end_totals, inflow;
   std::optional<std::vector<EmbeddedMassAccount>> embedded_mass;
+  std::optional<std::vector<PhaseTotals>> embedded_wall;  // FluidSimulation::embedded_wall_exchange
   std::optional<double> embedded_cells;  // ghost and solid-cut cells
   double cells = 0;                      // interior cells of the whole mesh; 0: the simulation's
 };

@@ -86,8 +86,14 @@ void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim,
                       {"through_walls", acc[k].walls},
                       {"cells_uncovered", acc[k].cells},
                       {"unaccounted", created[k]["mass"].get<double>() - acc[k].walls - acc[k].cells}});
+    // What the wall faces put into the flow cells: conservative, no mass, and momentum and energy are the walls'
+    // force and work; `flow_totals_change` less `totals.boundary_inflow` and this is what the cells covered or
+    // uncovered moved (round-off when conservative).
+    const std::vector<PhaseTotals> wall = rec.embedded_wall ? *rec.embedded_wall : sim.embedded_wall_exchange();
     j["embedded"] = {{"bodies", s.embedded.bodies.size()},
                      {"boundary_order", s.embedded.second_order ? 2 : 1},
+                     {"conservative", s.embedded.conservative},
+                     {"wall_exchange", totals_json(s, wall)},
                      {"ghost_and_solid_cut_cells",
                       rec.embedded_cells ? *rec.embedded_cells : static_cast<double>(sim.embedded().ghosts.size())},
                      {"flow_totals_change", change(false)},

@@ -96,6 +96,25 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   return e;
 }
 
+// embedded.conservative (docs/methods.md §5.8): e.fluid_fraction per padded cell of g. The fluid fraction of a cell
+// whose centre is less than its width along the normal from the surface: that of the plane (1/2 + phi / sum_d |n_d|
+// dx_d, exact for a plane along a grid axis); the others are wholly on one side. A pass over every cell: only for a
+// conservative boundary.
+template <int DIM>
+void add_fluid_fractions(const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo, EmbeddedState& e) {
+  e.fluid_fraction.resize(g.total);
+  for (std::size_t c = 0; c < g.total; ++c) {
+    const double phi = geo.centres.phi[c];
+    double f = phi > 0 ? 1.0 : 0.0;
+    if (const embedded::BandPoint* bp = geo.centres.at(c)) {
+      double width = 0;
+      for (int d = 0; d < DIM; ++d) width += std::abs(bp->normal[d]) * g.dx[d];
+      if (width > 0 && std::abs(phi) < width) f = std::clamp(0.5 + phi / width, 0.0, 1.0);
+    }
+    e.fluid_fraction[c] = f;
+  }
+}
+
 // The interface segments of one cycle as CSV (FluidSimulation::interface_segments_csv), cells by global index.
 // On a block (geometry built on the margin grid E): only the segments of the block's own cells (Grid::owns), in the
 // whole mesh's order; the blocks' rows merged by cell are one rank's file (block_io.cpp).
@@ -128,7 +147,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
         g_(block_.whole() ? block_ : margin_grid(block_)),
         surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order),
-        ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface) {
+        ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface),
+        conservative_(s.embedded.conservative) {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
     if (block_.whole()) update();
@@ -148,6 +168,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   std::vector<PhaseTotals> totals() const override { return inner_->totals(); }
   std::vector<PhaseTotals> boundary_inflow() const override { return inner_->boundary_inflow(); }
   std::vector<EmbeddedMassAccount> embedded_mass_account() const override { return inner_->embedded_mass_account(); }
+  std::vector<PhaseTotals> embedded_wall_exchange() const override { return inner_->embedded_wall_exchange(); }
   void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
     inner_->cell_states(cells, count, out);
   }
@@ -171,13 +192,19 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   void set_pass_profiling(bool on) override { inner_->set_pass_profiling(on); }
   PassTimes pass_times() const override { return inner_->pass_times(); }
   // The bodies move with the flow's steps: their vertices belong to the state.
+  // A conservative boundary's wall pressures too: they were sampled before the step's redistribution, which the
+  // saved cells no longer show (without them a restart differs in the last digits).
   void save_state(checkpoint::PartWriter& w) const override {
     inner_->save_state(w);
     w.put("fluid.embedded_vertices", body_state());
+    if (conservative_ && ghost_wall_pressure_) w.put("fluid.embedded_wall_pressure", wall_pressure_);
   }
   void restore_state(const checkpoint::PartReader& r) override {
     inner_->restore_state(r);
+    restored_wall_pressure_ = conservative_ && ghost_wall_pressure_ && r.has("fluid.embedded_wall_pressure");
+    if (restored_wall_pressure_) wall_pressure_ = r.doubles("fluid.embedded_wall_pressure", 2 * surface_.faces.size());
     set_body_state(r.doubles("fluid.embedded_vertices", 3 * surface_.vertices.size()));
+    restored_wall_pressure_ = false;
   }
   std::vector<double> body_state() const override {
     std::vector<double> x;
@@ -208,13 +235,14 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       update_block();
     } else {
       embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
-      if (ghost_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure extrapolated to its wall
+      if (ghost_wall_pressure_ && !restored_wall_pressure_) {  // a rigid body's p_I: the fluid's pressure at its wall
         const coupling::FluidSamples smp =
             interface::sample_interface<DIM>(g_, geo_.category, *inner_, interface::faces_of_surface(surface_));
         wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
       }
       EmbeddedState st =
           to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      if (conservative_) add_fluid_fractions<DIM>(g_, geo_, st);
       st.own_ghosts = st.ghosts.size();
       inner_->set_embedded(std::move(st), second_order_);
     }
@@ -359,6 +387,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   embedded::EmbeddedGeometry<DIM> geo_;
   bool second_order_;
   bool ghost_wall_pressure_;
+  bool conservative_;                    // embedded.conservative: the cells' fluid fractions with each geometry
+  bool restored_wall_pressure_ = false;  // wall_pressure_ from a checkpoint set, for the restart's first geometry
   std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;
 };

@@ -78,6 +78,10 @@ struct EmbeddedState {
   // primitives come from its owner every stage (BlockLinks::exchange_far, channel 0).
   std::size_t far_cells = 0;
   std::size_t own_ghosts = 0;  // ghost records of cells the block owns (Grid::owns): the blocks' sum is one rank's
+  // Per padded cell, the part of its volume on the fluid side of the surface (the plane through the closest surface
+  // point with its normal, docs/methods.md §5.8); computed for embedded.conservative only
+  // (add_fluid_fractions), on one rank. Empty: not computed.
+  std::vector<double> fluid_fraction;
 };
 
 }  // namespace cosim::fluid

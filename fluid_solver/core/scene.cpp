@@ -287,6 +287,7 @@ FluidScene read_fluid_scene(Node& root, double coupled_end) {
     s.embedded.band = em->get<double>("band", 3.0, config::in_range(2.0, 50.0));
     s.embedded.ghost_pressure_from_interface =
         em->get<std::string>("ghost_pressure", "interface", config::one_of({"interface", "image"})) == "interface";
+    s.embedded.conservative = em->get<bool>("conservative", false);
     // Optional: in a coupled scene the solid's faces are the embedded boundary.
     if (em->has("bodies") || coupled_end <= 0)
       for (auto& bn : em->list("bodies")) s.embedded.bodies.push_back(read_body(bn, s.dim));

@@ -101,6 +101,8 @@ struct EmbeddedSettings {
   // default; the coupler's p_I, or for the scene's bodies the fluid's pressure extrapolated to the wall) or
   // the image point's copied (image).
   bool ghost_pressure_from_interface = true;
+  // No mass through the walls, covered and uncovered cells' contents redistributed (docs/methods.md §5.8).
+  bool conservative = false;
   std::vector<EmbeddedBody> bodies;
 };
 

@@ -72,6 +72,9 @@ class FluidSimulation {
   virtual std::vector<PhaseTotals> boundary_inflow() const = 0;
   // Per phase, the mass the embedded boundary moved into the flow cells since the start (EmbeddedMassAccount).
   virtual std::vector<EmbeddedMassAccount> embedded_mass_account() const = 0;
+  // Per phase, what the embedded walls' face fluxes put into the flow cells since the start (mass, momentum,
+  // energy; with embedded.conservative no mass: the wall's force and its work). Empty: not recorded.
+  virtual std::vector<PhaseTotals> embedded_wall_exchange() const { return {}; }
   // States of the given padded cells, phase-major per cell: out[n * phases + k] (phases = scene().num_phases()).
   virtual void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const = 0;
   // Checkpoints: the whole evolving state (conserved variables of every cell as stored, time, steps, boundary

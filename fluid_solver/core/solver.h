@@ -48,6 +48,7 @@ class Solver final : public FluidSimulation {
       : scene_(scene),
         g_(scene.cells, scene.lower, scene.upper, scene.block.first,
            scene.block.whole() ? scene.cells : scene.block.count),
+        conservative_(scene.embedded.conservative),
         gran_(NP == 2 && scene.exchange.dispersed && scene.exchange.granular.enabled),
         ncons_(Lay::cons_vars(gran_)),
         nprim_(Lay::prim_vars(gran_)) {
@@ -108,8 +109,14 @@ class Solver final : public FluidSimulation {
   }
 
   void set_embedded(EmbeddedState state, bool second_order) override {
-    if (emb_.active && state.active && state.kind.size() == emb_.kind.size()) {
-      // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs.
+    // After set_conserved_cells (a restart) the cells already hold the state of this geometry: nothing was covered or
+    // uncovered, and their contents are contents.
+    const bool restored = restored_cells_;
+    restored_cells_ = false;
+    const bool changed = !restored && emb_.active && state.active && state.kind.size() == emb_.kind.size();
+    if (changed && !conservative_) {
+      // The cells the body uncovered join the flow cells with their mass, those it covered leave with theirs (the
+      // block's own cells: totals() counts no ghost layer).
       const double vol = g_.cell_volume();
       for (std::size_t c = 0; c < emb_.kind.size(); ++c) {
         const int change = int{is_flow_cell(state.kind[c])} - int{is_flow_cell(emb_.kind[c])};
@@ -117,7 +124,18 @@ class Solver final : public FluidSimulation {
           for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
       }
     }
-    emb_ = std::move(state);
+    if (conservative_ && state.active) {  // solver_conservative.h; one rank only (fluid_layout)
+      if (state.fluid_fraction.size() != state.kind.size())
+        throw std::invalid_argument("embedded.conservative: the geometry gave no fluid fractions of the cells");
+      const bool first = !emb_.active && !restored;
+      std::vector<std::uint8_t> before = std::move(emb_.kind);
+      emb_ = std::move(state);
+      fluid_volumes();
+      if (first) contents_from_densities();
+      else if (changed) redistribute_changed_cells(before);  // covered and uncovered cells
+    } else {
+      emb_ = std::move(state);
+    }
     emb_.blocked_x = emb_.blocked_x || !emb_.blocked[0].empty();
     wall_second_order_ = second_order;
     for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
@@ -185,6 +203,7 @@ class Solver final : public FluidSimulation {
   void advance(double dt) override {
     step_inflow_.fill(0.0);
     step_wall_mass_.fill(0.0);
+    step_wall_.fill(0.0);
     // The stages compute the next stage's primitives row by row, but with an embedded boundary (whose wall
     // faces read the primitives of other rows during a sweep); the next step's stable_dt then finds them
     // ready. The last stage applies drag and heat exchange to each row it finishes, before its primitives.
@@ -204,6 +223,7 @@ class Solver final : public FluidSimulation {
     }
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     for (int k = 0; k < NP; ++k) mass_by_walls_[k] += step_wall_mass_[k];
+    for (std::size_t i = 0; i < wall_.size(); ++i) wall_[i] += step_wall_[i];
     t_ += dt;
     ++steps_;
   }
@@ -225,13 +245,14 @@ class Solver final : public FluidSimulation {
           double a = 1.0;
           if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
           const double m = U_.var(Lay::mass(k))[c];
-          const double rho = m / a;
+          const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
+          const double rho = m / av;
           double q = 0;
           for (int d = 0; d < DIM; ++d) {
             f.velocity[3 * o + d] = U_.var(Lay::mom(k, d))[c] / m;
             q += f.velocity[3 * o + d] * f.velocity[3 * o + d];
           }
-          const double rhoe = material_energy(U_, k, c) / a;
+          const double rhoe = material_energy(U_, k, c) / av;
           f.alpha[o] = a;
           f.rho[o] = rho;
           f.p[o] = eos_[k].pressure(rho, rhoe / rho);
@@ -256,8 +277,9 @@ class Solver final : public FluidSimulation {
           q += o.velocity[d] * o.velocity[d];
         }
         o.alpha = a;
-        o.rho = m / a;
-        const double rhoe = material_energy(U_, k, c) / a;
+        const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
+        o.rho = m / av;
+        const double rhoe = material_energy(U_, k, c) / av;
         o.p = eos_[k].pressure(o.rho, rhoe / o.rho);
         o.c = eos_[k].sound_speed(o.rho, o.p);
         if (k == 1 && gran_) o.granular = std::max(0.0, granular_per_mass(U_, c));
@@ -281,12 +303,23 @@ class Solver final : public FluidSimulation {
     return out;
   }
 
+  std::vector<PhaseTotals> embedded_wall_exchange() const override {
+    std::vector<PhaseTotals> out(NP);
+    for (int k = 0; k < NP; ++k) {
+      out[k].mass = wall_[fvar_flux(k, 0)];
+      for (int d = 0; d < DIM; ++d) out[k].momentum[d] = wall_[fvar_flux(k, 1 + d)];
+      out[k].energy = wall_[fvar_flux(k, 1 + DIM)];
+    }
+    return out;
+  }
+
   void save_state(checkpoint::PartWriter& w) const override {
-    write_fluid_state(w, {conserved_cells(), account_values(), t_, steps_, ncons_, {}}, 2 * NP);
+    write_fluid_state(w, {conserved_cells(), account_values(), t_, steps_, ncons_, {}}, 2 * NP, wall_.size());
   }
 
   void restore_state(const checkpoint::PartReader& r) override {
-    const FluidStateEntries e = read_fluid_state(r, ncons_, g_.interior_count(), 0, inflow_.size(), 2 * NP);
+    const FluidStateEntries e =
+        read_fluid_state(r, ncons_, g_.interior_count(), 0, inflow_.size(), 2 * NP, wall_.size());
     set_conserved_cells(e.conserved);
     restore_progress(e.time, e.steps, e.accounts);
   }
@@ -295,14 +328,20 @@ class Solver final : public FluidSimulation {
     std::vector<double> out(inflow_.begin(), inflow_.end());
     out.insert(out.end(), mass_by_walls_.begin(), mass_by_walls_.end());
     out.insert(out.end(), mass_by_cells_.begin(), mass_by_cells_.end());
+    out.insert(out.end(), wall_.begin(), wall_.end());
     return out;
   }
   void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
-    if (accounts.size() != inflow_.size() + 2 * NP)
-      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), inflow_.size() + 2 * NP));
-    std::copy(accounts.begin(), accounts.begin() + static_cast<std::ptrdiff_t>(inflow_.size()), inflow_.begin());
-    std::copy(accounts.end() - 2 * NP, accounts.end() - NP, mass_by_walls_.begin());
-    std::copy(accounts.end() - NP, accounts.end(), mass_by_cells_.begin());
+    // inflow, the embedded mass account and (absent in older checkpoints: zero) the wall exchange
+    const std::size_t base = inflow_.size() + 2 * NP;
+    if (accounts.size() != base && accounts.size() != base + wall_.size())
+      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), base + wall_.size()));
+    const auto at = [&](std::size_t i) { return accounts.begin() + static_cast<std::ptrdiff_t>(i); };
+    std::copy(at(0), at(inflow_.size()), inflow_.begin());
+    std::copy(at(inflow_.size()), at(inflow_.size() + NP), mass_by_walls_.begin());
+    std::copy(at(inflow_.size() + NP), at(base), mass_by_cells_.begin());
+    wall_.fill(0.0);
+    if (accounts.size() > base) std::copy(at(base), accounts.end(), wall_.begin());
     t_ = time;
     steps_ = steps;
     primitives_valid_ = false;
@@ -322,14 +361,15 @@ class Solver final : public FluidSimulation {
   }
   void set_conserved_cells(const std::vector<double>& values) override {
     if (values.size() != static_cast<std::size_t>(ncons_) * g_.interior_count())
-      throw std::invalid_argument(fmt::format("{} conserved values for {} variables of {} cells", values.size(),
-                                              ncons_, g_.interior_count()));
+      throw std::invalid_argument(
+          fmt::format("{} conserved values for {} variables of {} cells", values.size(), ncons_, g_.interior_count()));
     const double* in = values.data();
     for (int v = 0; v < ncons_; ++v)
       for (int k = 0; k < g_.n[2]; ++k)
         for (int j = 0; j < g_.n[1]; ++j, in += g_.n[0]) std::copy(in, in + g_.n[0], U_.var(v) + g_.index(0, j, k));
     U0_.data = U_.data;
     primitives_valid_ = false;
+    restored_cells_ = true;
   }
   void set_block_links(BlockLinks* links) override { links_ = links; }
 
@@ -424,6 +464,7 @@ class Solver final : public FluidSimulation {
     double* trace = nullptr;     // 2 + DIM rows of faces: trace_faces' fluxes
     std::array<double, NP*(2 + DIM)> boundary{};  // this residual's flux into the domain [per second]
     std::array<double, NP> flow_mass{};           // embedded runs: its mass rate into the flow cells [per second]
+    std::array<double, NP*(2 + DIM)> wall{};      // and what the wall faces put into them [per second]
     double bad = 0.0;                             // 1 when update_row's primitives found an inadmissible cell
     PassTimes pass;                               // seconds per pass of this thread (profiling on)
   };
@@ -517,10 +558,25 @@ class Solver final : public FluidSimulation {
   bool smooth_next_to_wall(const WallFace& wf, int k) const;
   template <int D, ReconMode RM>
   void blocked_face_fluxes(bool high_side, std::size_t base, int len, const double* left_edges, int left_off,
-                           const double* right_edges, int right_off, double* mini, double* face1, double* buf,
-                           std::size_t flen);
+                           const double* right_edges, int right_off, Scratch& sc, double* buf, std::size_t flen);
   template <int D, ReconMode RM>
   void fix_side_edges(std::size_t first, int count, double* edges) const;
+
+  // solver_conservative.h: the wall faces' fluxes (conservative: without mass), the wall exchange account, and
+  // the contents of the cells a moving body covers or uncovers.
+  void content_per_mass(int k, std::size_t c, double* q) const;
+  void wall_face_flux(Scratch& sc, std::size_t fc, double sign, double area, double* buf, std::size_t flen,
+                      int f) const;
+  template <int D>
+  void wall_face_row(Scratch& sc, std::size_t base, int len, double* buf, std::size_t flen, bool count_low,
+                     bool count_high) const;
+  void redistribute_changed_cells(std::vector<std::uint8_t>& before);
+  void fluid_volumes();
+  static constexpr double kMinFluidVolume = 0.5;  // a flow cell's centre is in the fluid: 1/2 for a plane
+  void contents_from_densities();
+  void contents_to_densities(std::size_t base, int len, bool to_density);
+  // A cell's fluid volume over its volume (embedded.conservative), else 1.
+  double fluid_volume(std::size_t c) const { return conservative_ && !vfrac_.empty() ? vfrac_[c] : 1.0; }
 
   // solver_exchange.h: instantaneous relaxations, drag and heat exchange.
   TwoPhaseRow<DIM> two_phase_row(std::size_t base);
@@ -539,7 +595,7 @@ class Solver final : public FluidSimulation {
   FieldArray U_, U0_, R_, W_;
   std::vector<Scratch> scratch_;
   BoundaryFiller<DIM, NP> bc_;
-  BlockLinks* links_ = nullptr;                      // the other blocks of a split mesh (none: the whole mesh)
+  BlockLinks* links_ = nullptr;                       // the other blocks of a split mesh (none: the whole mesh)
   std::array<std::array<bool, 2>, 3> domain_edge_{};  // per axis and side: the block's faces there are the domain's
   ReconMode mode_ = ReconMode::VanLeer;
   double t_ = 0.0;
@@ -550,6 +606,13 @@ class Solver final : public FluidSimulation {
   std::array<double, NP*(2 + DIM)> inflow_{}, step_inflow_{};  // boundary_inflow(): since the start, this step
   // embedded_mass_account(): through the walls since the start and this step, with the cells covered or uncovered.
   std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
+  // embedded_wall_exchange(): what the wall faces put into the flow cells since the start and this step.
+  std::array<double, NP*(2 + DIM)> wall_{}, step_wall_{};
+  bool conservative_ = false;  // embedded.conservative (solver_conservative.h)
+  bool restored_cells_ = false;  // set_conserved_cells since the last set_embedded
+  // Per padded cell: the fluid volume a flow cell stands for over the cell's volume (its own fluid fraction and a
+  // share of the fluid in the ghost cells next to it), and scratch for the shares.
+  std::vector<double> vfrac_, shares_;
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
   std::vector<double> far_send_, far_recv_;         // far cells' primitives to and from the other blocks
   bool wall_second_order_ = true;
@@ -565,6 +628,7 @@ class Solver final : public FluidSimulation {
 }  // namespace cosim::fluid
 
 // The member functions of the physics steps.
+#include "fluid_solver/core/solver_conservative.h"
 #include "fluid_solver/core/solver_embedded_faces.h"
 #include "fluid_solver/core/solver_exchange.h"
 #include "fluid_solver/core/solver_primitives.h"

@@ -123,13 +123,15 @@ template <int DIM, int NP, FluxKind FK>
 template <int D, ReconMode RM>
 inline void Solver<DIM, NP, FK>::blocked_face_fluxes(bool high_side, std::size_t base, int len,
                                                      const double* left_edges, int left_off, const double* right_edges,
-                                                     int right_off, double* mini, double* face1, double* buf,
-                                                     std::size_t flen) {
+                                                     int right_off, Scratch& sc, double* buf, std::size_t flen) {
   const auto& faces = emb_.blocked[D];
   if (faces.empty()) return;
   auto it = std::lower_bound(faces.begin(), faces.end(), base,
                              [](const BlockedFace& f, std::size_t b) { return f.high.fluid_cell < b; });
   const std::size_t len_e = edge_row_len(), hi = Lay::kPrim * len_e;
+  double* mini = sc.mini;
+  double* face1 = sc.face1;
+  const double area = g_.cell_volume() / g_.dx[D];
   // One-face row in the scratch edges: face 0 = (hi edge of edge 0 | lo edge of edge 1); edge 1's hi edge is
   // the right cell's other edge (its intra-cell term, two phases).
   double* m0hi = mini + hi;
@@ -151,6 +153,9 @@ inline void Solver<DIM, NP, FK>::blocked_face_fluxes(bool high_side, std::size_t
       for (int v = 0; v < Lay::kPrim; ++v) m1hi[v * len_e] = m1lo[v * len_e];
     }
     compute_faces<D, RM>(1, mini, 0, mini, 1, face1, 1);
+    // In the wall exchange account on the block that owns the flow cell (Grid::owns; the x rows reach a ghost cell).
+    const std::size_t fc = high_side ? it->high.fluid_cell : it->low.fluid_cell;
+    wall_face_flux(sc, fc, high_side ? 1.0 : -1.0, g_.owns(fc) ? area : 0.0, face1, 1, 0);
     for (int v = 0; v < kFaceVars; ++v) buf[v * flen + f] = face1[v];
   }
 }

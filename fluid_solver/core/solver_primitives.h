@@ -63,8 +63,11 @@ inline double Solver<DIM, NP, FK>::primitives_row(std::size_t base, int len) {
   for (int v = 0; v < Lay::kPrim; ++v) wp[v] = v < nprim_ ? W_.var(v) + base : nullptr;
   double bad_row = 0.0;
   // GRAN as a compile-time constant: a run-time select of the material energy does not vectorise.
-  const auto row = [&](auto gran_tag) {
+  // embedded.conservative: a cell's content over its fluid volume (vol: that volume / the cell's, §5.8).
+  const double* vol = conservative_ && !vfrac_.empty() ? vfrac_.data() + base : nullptr;
+  const auto row = [&](auto gran_tag, auto vol_tag) {
     constexpr bool gran = decltype(gran_tag)::value;
+    constexpr bool by_volume = decltype(vol_tag)::value;
 #pragma GCC ivdep
     for (int c = 0; c < len; ++c) {
       double a0 = 1.0;
@@ -74,7 +77,8 @@ inline double Solver<DIM, NP, FK>::primitives_row(std::size_t base, int len) {
         bad_row = (a0 > 0.0 && a0 < 1.0) ? bad_row : 1.0;
       }
       for (int k = 0; k < NP; ++k) {
-        const double a = k == 0 ? a0 : 1.0 - a0;
+        double a = k == 0 ? a0 : 1.0 - a0;
+        if constexpr (by_volume) a *= vol[c];
         const double m = uc[Lay::mass(k)][c];
         const double rho = m / a;
         const double inv = 1.0 / m;
@@ -100,8 +104,14 @@ inline double Solver<DIM, NP, FK>::primitives_row(std::size_t base, int len) {
       }
     }
   };
-  if (gran_) row(std::true_type{});
-  else row(std::false_type{});
+  if (vol) {
+    if (gran_) row(std::true_type{}, std::true_type{});
+    else row(std::false_type{}, std::true_type{});
+  } else if (gran_) {
+    row(std::true_type{}, std::false_type{});
+  } else {
+    row(std::false_type{}, std::false_type{});
+  }
   bc_.fill_x_row(W_, base);
   return bad_row;
 }

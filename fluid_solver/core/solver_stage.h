@@ -31,6 +31,7 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
   for (auto& sc : scratch_) {
     sc.boundary.fill(0.0);
     sc.flow_mass.fill(0.0);
+    sc.wall.fill(0.0);
     sc.bad = 0.0;
   }
   const auto finish = [&](Scratch& sc, std::size_t base, int len, bool primitives_now) {
@@ -61,6 +62,12 @@ inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_
       double f = 0;
       for (const auto& sc : scratch_) f += sc.flow_mass[k] - sc.boundary[fvar_flux(k, 0)];
       step_wall_mass_[k] = b * (step_wall_mass_[k] + dt * f);
+    }
+  if (emb_.active)
+    for (std::size_t i = 0; i < step_wall_.size(); ++i) {
+      double f = 0;
+      for (const auto& sc : scratch_) f += sc.wall[i];
+      step_wall_[i] = b * (step_wall_[i] + dt * f);
     }
 }
 
@@ -120,6 +127,9 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
       }
     }
   }
+  // embedded.conservative: the relaxations and the exchange act on densities, U / V (§5.8), and give contents back.
+  const bool by_volume = NP == 2 && conservative_ && !vfrac_.empty();
+  if (by_volume) contents_to_densities(base, len, true);
   if constexpr (NP == 2) {
     PassClock clk(pass_acc(Pass::Relaxation));
     relax_cells(base, len, scene_.exchange.velocity == VelocityRelaxation::Instant,
@@ -130,6 +140,7 @@ inline void Solver<DIM, NP, FK>::update_row(Scratch& sc, std::size_t base, int l
       PassClock clk(pass_acc(Pass::Exchange));
       exchange_cells(sc, base, len, exchange_dt);
     }
+  if (by_volume) contents_to_densities(base, len, false);
   if (fuse_primitives) {
     PassClock clk(pass_acc(Pass::Primitives));
     sc.bad = std::max(sc.bad, primitives_row(base, len));

@@ -25,10 +25,11 @@ inline void Solver<DIM, NP, FK>::x_row(Scratch& sc, std::size_t base, double* ed
   {
     PassClock clk(pass_acc(Pass::Fluxes));
     compute_faces<0, RM>(n0 + 1, edges, 0, edges, 1, faces, flen);
+    if (emb_.active) wall_face_row<0>(sc, base, n0 + 1, faces, flen, true, true);
   }
   const auto blocked = [&](bool high_side) {
     PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
-    blocked_face_fluxes<0, RM>(high_side, base, n0 + 1, edges, 0, edges, 1, sc.mini, sc.face1, faces, flen);
+    blocked_face_fluxes<0, RM>(high_side, base, n0 + 1, edges, 0, edges, 1, sc, faces, flen);
   };
   PassClock clk(pass_acc(Pass::Apply));
   if (domain_edge_[0][0]) add_boundary_flux<0>(sc, faces, flen, 0, base, 1);
@@ -99,13 +100,13 @@ inline void Solver<DIM, NP, FK>::sweep_impl(RowDone& row_done) {
         {
           PassClock clk(pass_acc(Pass::Fluxes));
           compute_faces<D, RM>(n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, high, flen);
+          if (emb_.active) wall_face_row<D>(sc, base, n0, high, flen, layer > a, layer < b);
         }
         // A blocked face's buffer entry holds the wall flux of the cell below it (high_side false) or above it.
         const auto blocked = [&](bool high_side) {
           if (emb_.active) {
             PassClock clk(pass_acc(Pass::Fluxes), pass_acc(Pass::Apply));
-            blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc.mini, sc.face1,
-                                       high, flen);
+            blocked_face_fluxes<D, RM>(high_side, base, n0, sc.edges[prev], 0, sc.edges[1 - prev], 0, sc, high, flen);
           }
         };
         {

@@ -111,9 +111,10 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       surface_pressure_[2 * sf] = face_pressure[2 * f];
       surface_pressure_[2 * sf + 1] = face_pressure[2 * f + 1];
     }
-    sim_.set_embedded(to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_,
-                                             ghost_wall_pressure_ ? &surface_pressure_ : nullptr),
-                      second_order_);
+    EmbeddedState es = to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_,
+                                              ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
+    if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g_, geo_, es);
+    sim_.set_embedded(std::move(es), second_order_);
   }
 
   std::string segments_csv() const override { return fluid::segments_csv<DIM>(geo_); }

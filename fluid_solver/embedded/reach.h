@@ -7,7 +7,9 @@
 //   - the wall-velocity limiter (solver_embedded_faces.h): cells 1 to 4 from the wall along the grid line;
 //   - the wall pressure samples (interface_samples.h): the face centre out by (1 + pushes + 1) h' with
 //     h' = sum_d |n_d| dx_d <= sum_d dx_d, one stencil cell more;
-//   - redistribution: a conservative moving-wall treatment's cells next to a body, one cell.
+//   - redistribution (embedded.conservative, docs/methods.md §5.8): the content of a cell a body covers or uncovers
+//     goes to (or comes from) the flow cells of the (2 r + 1)^DIM box around it, r = kRedistributionReach; on one
+//     rank only for now (fluid_layout refuses it on several: the boxes do not cross block borders yet).
 #pragma once
 
 #include <algorithm>
@@ -19,7 +21,7 @@
 namespace cosim::fluid::embedded {
 
 inline constexpr int kWallLimiterReach = 4;     // cells 1..4 of a wall face (the flow cell and three beyond it)
-inline constexpr int kRedistributionReach = 1;  // reserved: cells next to a body
+inline constexpr int kRedistributionReach = 1;  // embedded.conservative: covered and uncovered cells
 inline constexpr int kCategoryReach = 2;        // a ghost is a solid cell within this many cells of a flow cell
 inline constexpr int kMaxImagePushes = 2;       // ImagePointOptions::max_pushes, SampleOptions::max_pushes
 

@@ -93,6 +93,10 @@ std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const pa
   return summed(sim.boundary_inflow(), comm);
 }
 
+std::vector<PhaseTotals> wall_exchange_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm) {
+  return summed(sim.embedded_wall_exchange(), comm);
+}
+
 void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
                                 const parallel::CartComm& comm) {
   if (comm.size() == 1) return write_snapshot(series, sim);  // with the embedded interface segments
@@ -135,8 +139,9 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
     checkpoint::PartWriter w(dir / kFluidPart, "fluid");
     w.put_integer("cycle", run.cycle);
     w.put_scalar("time", run.time);
+    const auto phases = static_cast<std::size_t>(sim.scene().num_phases());
     write_fluid_state(w, {std::move(global), std::move(accounts), sim.time(), sim.steps(), vars, sim.body_state()},
-                      2 * static_cast<std::size_t>(sim.scene().num_phases()));
+                      2 * phases, sim.embedded_wall_exchange().empty() ? 0 : phases * (2 + sim.scene().dim));
     checkpoint::put_series(w, "fluid", series);
     w.put_text("run.start_totals", run.start_totals.dump());
     w.put_text("run.counters", run.counters.dump());

@@ -17,6 +17,8 @@ namespace cosim::fluid {
 // Every rank calls these together (they reduce or gather).
 std::vector<PhaseTotals> totals_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 std::vector<PhaseTotals> inflow_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
+// Per phase, what the walls' faces put into the flow cells (FluidSimulation::embedded_wall_exchange), over blocks.
+std::vector<PhaseTotals> wall_exchange_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);
 
 // The embedded bodies' mass accounts and ghost and solid-cut cells of the whole mesh (sums over the blocks).
 std::vector<EmbeddedMassAccount> embedded_mass_over_blocks(const FluidSimulation& sim, const parallel::CartComm& comm);

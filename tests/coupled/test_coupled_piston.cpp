@@ -214,8 +214,7 @@ TEST(CoupledPiston, LightPistonSmoothWhereStandardConditionsBlowUp) {
 // implicitly); the impedance weights without their last terms change with the step, so there the two runs
 // differ by 12% of the travel.
 TEST(CoupledPiston, SolidSubcyclingKeepsTheTrajectory) {
-  const std::string end =
-      " --set coupling.time.end=0.02 --set coupling.output.interval=0.01";
+  const std::string end = " --set coupling.time.end=0.02 --set coupling.output.interval=0.01";
   const auto [a, b, worst, travel] =
       compare_runs("piston_light_2d", end, "piston_light_2d", end + " --set solid.numerics.max_subcycles=10");
   std::printf("[ measured ] sub-cycling: %zu coupled cycles instead of %zu, max |dx| = %.3e m of %.3f m travel\n",
@@ -286,4 +285,40 @@ TEST(CoupledPiston, Piston3DAtThePapersResolutionFollowsTheReferences) {
   EXPECT_LT(d.plain, 0.05);  // the gas inertia alone: 4.3%
   EXPECT_LT(d.inertia, 0.01);
   EXPECT_LT(d.conforming, 0.01);
+}
+
+// The conservative embedded boundary (fluid.embedded.conservative, docs/methods.md §5.8) on the heavy piston, three
+// periods: the gas mass of the flow cells changes only by the domain boundary's flux (to 1e-10; the channel's walls
+// let 5e-6 of it through where they meet the piston, none with the default boundary: not understood yet), the
+// fluid's momentum and energy change by exactly that and the walls' exchange (the piston's force and work). The
+// piston stays within 10% of the references (measured: 6.0%, against 0.04% with the default boundary: the reason it
+// is not the default; docs/benchmarks.md, "The conservative embedded boundary").
+TEST(CoupledPiston, ConservativeWallsKeepTheGasMassAndFollowTheOde) {
+  const std::string args = "--set fluid.embedded.conservative=true";
+  const Deviation d = full_run_deviation("piston_2d", args, "piston_2d (robin, conservative boundary)");
+  const Deviation d2 = full_run_deviation("piston_2d", "", "piston_2d (robin, boundary order 2)");
+  const fs::path dir = run_once("piston_2d", args);
+  std::ifstream in(dir / "fluid" / "summary.json");
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_TRUE(j["embedded"]["conservative"].get<bool>());
+  const auto& t = j["totals"];
+  const auto& wall = j["embedded"]["wall_exchange"][0];
+  const double m0 = t["start"][0]["mass"], e0 = t["start"][0]["energy"];
+  const double dm = t["end"][0]["mass"].get<double>() - m0 - t["boundary_inflow"][0]["mass"].get<double>();
+  const double de = t["end"][0]["energy"].get<double>() - e0 - t["boundary_inflow"][0]["energy"].get<double>();
+  const double dmx = t["end"][0]["momentum"][0].get<double>() - t["start"][0]["momentum"][0].get<double>() -
+                     t["boundary_inflow"][0]["momentum"][0].get<double>();
+  std::ifstream ea(dir / "energy_account.json");
+  const auto acc = nlohmann::json::parse(ea);
+  std::printf(
+      "[ measured ] conservative: mass %.2e of %.4f kg, energy %.2e of the walls' work %.4e J, coupled "
+      "energy account: interface created %.3e (relative)\n",
+      dm / m0, m0, (de - wall["energy"].get<double>()) / e0, wall["energy"].get<double>(),
+      acc["interface_created_relative"].get<double>());
+  EXPECT_LT(std::abs(dm), 1e-10 * m0);
+  EXPECT_LT(std::abs(de - wall["energy"].get<double>()), 1e-10 * e0);
+  EXPECT_LT(std::abs(dmx - wall["momentum"][0].get<double>()), 1e-10 * m0 * 374.0);
+  EXPECT_LT(d.inertia, 0.1);
+  EXPECT_LT(d.conforming, 0.1);
+  EXPECT_LT(d2.inertia, d.inertia);  // when this fails, the conservative boundary may become the default
 }

@@ -120,6 +120,21 @@ void expect_as_one_rank(const Case& c) {
                   e1["flow_totals_change"][k]["energy"].get<double>(), 1e-13 * en)
           << what;
     }
+    // The wall faces' exchange, each face counted on the block that owns its flow cell.
+    ASSERT_EQ(e["wall_exchange"].size(), e1["wall_exchange"].size()) << what;
+    double force = 0;
+    for (std::size_t k = 0; k < e1["wall_exchange"].size(); ++k) {
+      const nlohmann::json &w1 = e1["wall_exchange"][k], &w = e["wall_exchange"][k];
+      const double en = std::abs(s1["totals"]["end"][k]["energy"].get<double>());
+      const double p = std::sqrt(2.0 * m * en);  // a momentum scale
+      EXPECT_NEAR(w["mass"].get<double>(), w1["mass"].get<double>(), 1e-13 * m) << what;
+      EXPECT_NEAR(w["energy"].get<double>(), w1["energy"].get<double>(), 1e-13 * en) << what;
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_NEAR(w["momentum"][d].get<double>(), w1["momentum"][d].get<double>(), 1e-13 * p) << what;
+        force += std::abs(w1["momentum"][d].get<double>());
+      }
+    }
+    EXPECT_GT(force, 0.0) << what << ": the walls exchanged no momentum";
     std::printf("[ measured ] %s (layout %s): bit for bit, %.2f s (one rank %.2f s), embedded exchange %.0f bytes\n",
                 what.c_str(), s["parallel"]["layout"].dump().c_str(), r.seconds, r1.seconds,
                 s["parallel"].value("embedded_exchange_bytes", 0.0));
@@ -186,6 +201,23 @@ TEST(EmbeddedRanks, ACheckpointWithAMovingBodyRestartsOnAnotherRankCount) {
     EXPECT_EQ(series_difference(whole, first), "") << tag;
     EXPECT_EQ(summary_of(first)["parallel"]["ranks"].get<int>(), to) << tag;
   }
+}
+
+// The conservative boundary's redistribution does not cross block borders yet: several ranks refuse the key before
+// anything runs (exit 2, no summary), one rank runs it.
+TEST(EmbeddedRanks, TheConservativeBoundaryIsRefusedOnSeveralRanksNamingTheKey) {
+  const std::string sets =
+      "--set fluid.time.end=0.5 --set fluid.output.interval=0.5 --set fluid.embedded.conservative=true";
+  const auto one = scratch_path("emb_conservative_1");
+  const RankRun r1 = run_fluid_ranks(1, scene_path("embedded_advection"), one, sets);
+  ASSERT_EQ(r1.code, 0) << r1.log;
+  EXPECT_TRUE(summary_of(one)["embedded"]["conservative"].get<bool>());
+  const auto two = scratch_path("emb_conservative_2");
+  const RankRun r2 = run_fluid_ranks(2, scene_path("embedded_advection"), two, sets);
+  EXPECT_EQ(r2.code, 2) << r2.log;
+  EXPECT_NE(r2.log.find("2 ranks: fluid.embedded.conservative: true runs on one rank for now"), std::string::npos)
+      << r2.log;
+  EXPECT_FALSE(std::filesystem::exists(two / "summary.json"));
 }
 
 // The reach check: an image point whose stencil lies beyond the cells a block's lattice holds is an error naming

@@ -1,0 +1,198 @@
+// The conservative embedded boundary (`embedded.conservative`, docs/methods.md §5.8): at the grid faces between a
+// flow cell and a ghost/solid-cut cell no phase's mass crosses, and the momentum and energy that the mass flux
+// carried go back out of the face flux, so the face keeps only what the wall exchanges with the flow (the wall's
+// pressure force and its work, eq. 5.8.1); the cells a moving body covers give their content to the flow cells
+// around them, and those it uncovers take theirs from them (redistribution within kRedistributionReach, weighted by
+// each phase's mass, after Chern & Colella 1987 and Pember et al. 1995). Also: the wall exchange account of every
+// run, conservative or not.
+#pragma once
+
+#include "fluid_solver/core/solver.h"
+#include "fluid_solver/embedded/reach.h"
+
+namespace cosim::fluid {
+
+// Phase k's momentum (DIM) and total energy per unit mass in flow cell c from the stage's primitives, into q[]
+// (q[DIM + 1]: the material energy per mass of a dispersed phase with a granular temperature).
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::content_per_mass(int k, std::size_t c, double* q) const {
+  const double rho = W_.var(Lay::rho(k))[c], p = W_.var(Lay::pres(k))[c];
+  double u2 = 0;
+  for (int d = 0; d < DIM; ++d) {
+    q[d] = W_.var(Lay::vel(k, d))[c];
+    u2 += q[d] * q[d];
+  }
+  const double e = eos_[k].rho_e(rho, p) / rho;
+  q[DIM] = e + 0.5 * u2;
+  q[DIM + 1] = e;
+  if constexpr (NP == 2)
+    if (k == 1 && gran_) q[DIM] += W_.var(Lay::pgran)[c];
+}
+
+// One wall face's flux in buf (column f, stride flen) as its flow cell `fc` receives it (sign +1: the flow cell is
+// on the face's high side): conservative, the mass flux of every phase is taken out with the content it carried;
+// either way the flux into the flow cell goes into this thread's wall exchange account (per second).
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::wall_face_flux(Scratch& sc, std::size_t fc, double sign, double area, double* buf,
+                                                std::size_t flen, int f) const {
+  for (int k = 0; k < NP; ++k) {
+    double* mf = buf + fvar_flux(k, 0) * flen + f;
+    if (conservative_) {
+      double q[DIM + 2];
+      content_per_mass(k, fc, q);
+      const double m = *mf;
+      for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] -= m * q[d];
+      buf[fvar_flux(k, 1 + DIM) * flen + f] -= m * q[DIM];
+      if constexpr (NP == 2)
+        if (k == 1 && gran_) buf[fvar_heat * flen + f] -= m * q[DIM + 1];
+      *mf = 0.0;
+    }
+    for (int v = 0; v < 2 + DIM; ++v) sc.wall[fvar_flux(k, v)] += sign * area * buf[fvar_flux(k, v) * flen + f];
+  }
+}
+
+// The wall faces of one face row (face f's high cell is base + f, as in mirror_wall_faces) after their fluxes.
+// A face row that two sweep chunks compute gives each of them one of its cell rows: a face counts in the account
+// where its flow cell's row is this chunk's (count_low: the row below the faces, count_high: the row above), and on a
+// block of a split mesh where its flow cell is the block's own: the blocks' sum is one rank's account.
+template <int DIM, int NP, FluxKind FK>
+template <int D>
+inline void Solver<DIM, NP, FK>::wall_face_row(Scratch& sc, std::size_t base, int len, double* buf, std::size_t flen,
+                                               bool count_low, bool count_high) const {
+  const auto& faces = emb_.faces[D];
+  auto it = std::lower_bound(faces.begin(), faces.end(), base,
+                             [](const WallFace& f, std::size_t b) { return high_cell(f) < b; });
+  const double area = g_.cell_volume() / g_.dx[D];
+  for (; it != faces.end() && high_cell(*it) < base + static_cast<std::size_t>(len); ++it) {
+    // On a block of a split mesh the face of a flow cell in a ghost layer is its owner's (Grid::owns).
+    const bool counted = (it->solid_on_high_side ? count_low : count_high) && g_.owns(it->fluid_cell);
+    wall_face_flux(sc, it->fluid_cell, it->solid_on_high_side ? -1.0 : 1.0, counted ? area : 0.0, buf, flen,
+                   static_cast<int>(high_cell(*it) - base));
+  }
+}
+
+// The `len` cells of a row from `base`: contents to densities (U / V, to_density) or back (U V); alpha stays.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::contents_to_densities(std::size_t base, int len, bool to_density) {
+  const double* v = vfrac_.data() + base;
+  for (int q = 0; q < ncons_; ++q) {
+    if (NP == 2 && q == Lay::alpha) continue;
+    double* u = U_.var(q) + base;
+    if (to_density)
+      for (int i = 0; i < len; ++i) u[i] /= v[i];
+    else
+      for (int i = 0; i < len; ++i) u[i] *= v[i];
+  }
+}
+
+// The fluid volume each flow cell stands for (vfrac_, in cell volumes; eq. 5.8.2): its own fluid fraction and, of
+// every ghost or solid-cut cell next to it across a wall face, that cell's fluid fraction shared equally among its
+// flow neighbours; at least kMinFluidVolume. The other cells hold densities (ghost states): 1.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::fluid_volumes() {
+  const std::vector<double>& ff = emb_.fluid_fraction;
+  vfrac_.resize(g_.total);
+  shares_.resize(g_.total);
+  for (std::size_t c = 0; c < g_.total; ++c) vfrac_[c] = is_flow_cell(emb_.kind[c]) ? ff[c] : 1.0;
+  for (const GhostRecord& gr : emb_.ghosts) shares_[gr.cell] = 0.0;
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : emb_.faces[D]) shares_[f.solid_cell] = 0.0;
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : emb_.faces[D]) shares_[f.solid_cell] += 1.0;
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : emb_.faces[D]) vfrac_[f.fluid_cell] += ff[f.solid_cell] / shares_[f.solid_cell];
+  for (std::size_t c = 0; c < g_.total; ++c)
+    if (is_flow_cell(emb_.kind[c])) vfrac_[c] = std::max(vfrac_[c], kMinFluidVolume);
+  primitives_valid_ = false;
+}
+
+// The first geometry: the initial state's densities become contents, U <- U vfrac in the flow cells (all but the
+// volume fraction alpha).
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::contents_from_densities() {
+  for (int v = 0; v < ncons_; ++v) {
+    if (NP == 2 && v == Lay::alpha) continue;
+    double* u = U_.var(v);
+    for (std::size_t c = 0; c < g_.total; ++c)
+      if (is_flow_cell(emb_.kind[c])) u[c] *= vfrac_[c];
+  }
+  U0_ = U_;
+}
+
+// The cells whose category changed from `before` to emb_.kind (eq. 5.8.3), within kRedistributionReach: an
+// uncovered cell takes the mean density of itself and the flow cells around it times its fluid volume, each of
+// them giving the same fraction of every variable (so their velocities, temperatures and phase ratios stay); then
+// a covered cell gives its content to the flow cells around it in proportion to their fluid volumes. What cannot
+// be placed (no flow cell in reach) goes into the cells account. `before` is scratch: the uncovered cells are
+// marked as flow cells once they hold their content.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::redistribute_changed_cells(std::vector<std::uint8_t>& before) {
+  constexpr int r = embedded::kRedistributionReach;
+  constexpr int side = 2 * r + 1;
+  constexpr int box = DIM == 1 ? side : DIM == 2 ? side * side : side * side * side;
+  const double vol = g_.cell_volume();
+  const int nz = DIM == 3 ? r : 0, ny = DIM >= 2 ? r : 0;
+  const auto fluid = static_cast<std::uint8_t>(CellKind::Fluid);
+  std::size_t nb[box];
+  // The cells of the block around (i, j, k), but itself, for which take(n) holds, into nb; their count.
+  const auto around = [&](int i, int j, int k, auto take) {
+    int count = 0;
+    for (int dk = -nz; dk <= nz; ++dk)
+      for (int dj = -ny; dj <= ny; ++dj)
+        for (int di = -r; di <= r; ++di) {
+          const int a = i + di, b = j + dj, e = k + dk;
+          if ((di == 0 && dj == 0 && dk == 0) || a < 0 || a >= g_.n[0] || b < 0 || b >= g_.n[1] || e < 0 ||
+              e >= g_.n[2])
+            continue;
+          const std::size_t n = g_.index(a, b, e);
+          if (take(n)) nb[count++] = n;
+        }
+    return count;
+  };
+  const auto content_vars = [&](auto each) {
+    for (int v = 0; v < ncons_; ++v)
+      if (NP == 1 || v != Lay::alpha) each(U_.var(v));
+  };
+  for (int pass = 0; pass < 2; ++pass)  // uncovered cells first: a covered cell's content may go to them
+    for (int k = 0; k < g_.n[2]; ++k)
+      for (int j = 0; j < g_.n[1]; ++j)
+        for (int i = 0; i < g_.n[0]; ++i) {
+          const std::size_t c = g_.index(i, j, k);
+          const bool now = is_flow_cell(emb_.kind[c]), was = is_flow_cell(before[c]);
+          if (now == was || now != (pass == 0)) continue;
+          if (now) {  // uncovered: U holds its last ghost state (densities)
+            const int count = around(i, j, k, [&](std::size_t n) { return is_flow_cell(before[n]); });
+            double vsum = vfrac_[c];
+            for (int s = 0; s < count; ++s) vsum += vfrac_[nb[s]];
+            if (count == 0) {  // nothing to take it from: its ghost state, unaccounted for
+              content_vars([&](double* u) { u[c] *= vfrac_[c]; });
+              for (int p = 0; p < NP; ++p) mass_by_cells_[p] += vol * U_.var(Lay::mass(p))[c];
+            } else {
+              const double share = vfrac_[c] / vsum;
+              content_vars([&](double* u) {
+                double t = 0;
+                for (int s = 0; s < count; ++s) {
+                  t += share * u[nb[s]];
+                  u[nb[s]] -= share * u[nb[s]];
+                }
+                u[c] = t;
+              });
+            }
+            before[c] = fluid;
+          } else {  // covered
+            const int count = around(i, j, k, [&](std::size_t n) { return is_flow_cell(emb_.kind[n]); });
+            double vsum = 0;
+            for (int s = 0; s < count; ++s) vsum += vfrac_[nb[s]];
+            if (count == 0) {
+              for (int p = 0; p < NP; ++p) mass_by_cells_[p] -= vol * U_.var(Lay::mass(p))[c];
+              continue;
+            }
+            content_vars([&](double* u) {
+              for (int s = 0; s < count; ++s) u[nb[s]] += u[c] * (vfrac_[nb[s]] / vsum);
+            });
+          }
+        }
+  primitives_valid_ = false;
+}
+
+}  // namespace cosim::fluid
