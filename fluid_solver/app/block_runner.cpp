@@ -105,7 +105,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                fmt::join(blocks.begin(), blocks.begin() + scene.dim, " x "), omp_get_max_threads());
 
   // A rank that falls silent (stopped, hung) ends the run; the rank that notices says so in summary.json.
-  const double silence = std::getenv("COSIM_RANK_TIMEOUT") ? std::atof(std::getenv("COSIM_RANK_TIMEOUT")) : 3.0;
+  const double silence = parallel::rank_silence_timeout();
   parallel::RankWatchdog watchdog(silence, [&, name = scene.name](const std::string& message, int silent, int code) {
     spdlog::error("{}", message);
     const nlohmann::json j{{"status", "failed"},

@@ -13,6 +13,10 @@ namespace cosim::parallel {
 
 struct RankWatchdogState;
 
+// How long a rank may be silent before the run is stopped: $COSIM_RANK_TIMEOUT seconds, else 2.5 s (with the
+// launcher's clean-up, up to 2 s on a loaded machine, the run ends within 5 s of the stop).
+double rank_silence_timeout();
+
 class RankWatchdog {
  public:
   // on_silence(message, silent_rank, exit_code) runs on the watchdog thread before the run is aborted with
