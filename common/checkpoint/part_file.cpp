@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/io/atomic_file.h"
+#include "common/io/snapshot_writer.h"
 #include "common/util/sha256.h"
 
 namespace cosim::checkpoint {
@@ -17,13 +18,24 @@ PartWriter::PartWriter(fs::path path, std::string_view kind)
   h5_.write_attribute("/", "kind", kind);
 }
 
+PartWriter::PartWriter(fs::path path, std::string_view kind, io::CollectiveWrite& together)
+    : path_(std::move(path)),
+      tmp_(io::temp_path_for(path_)),
+      together_(&together),
+      h5_(tmp_, io::Hdf5File::Mode::Create, together.file_access()) {
+  h5_.write_attribute("/", "format", kPartFormat);
+  h5_.write_attribute("/", "kind", kind);
+}
+
+bool PartWriter::leader() const { return !together_ || together_->leader(); }
+
 PartWriter::~PartWriter() {
   if (committed_) return;
   try {
     h5_.close();
   } catch (...) {}  // a failed close (full disk) only leaves the temporary file, removed next
   std::error_code ignored;
-  fs::remove(tmp_, ignored);
+  if (leader()) fs::remove(tmp_, ignored);
 }
 
 void PartWriter::put(const std::string& name, std::span<const double> v) {
@@ -35,6 +47,10 @@ void PartWriter::put(const std::string& name, std::span<const std::int64_t> v) {
 void PartWriter::put(const std::string& name, std::span<const std::uint8_t> v) {
   h5_.write_dataset("/" + name, v, {v.size()});
 }
+void PartWriter::put_part(const std::string& name, std::span<const double> part, const io::Hdf5Shape& shape,
+                          const io::Hdf5Shape& offset, const io::Hdf5Shape& count) {
+  h5_.write_dataset_part("/" + name, part, shape, offset, count);
+}
 void PartWriter::put_flags(const std::string& name, const std::vector<char>& flags) {
   put(name, std::vector<std::uint8_t>(flags.begin(), flags.end()));
 }
@@ -45,7 +61,11 @@ void PartWriter::put_scalar(const std::string& name, double v) { h5_.write_attri
 void PartWriter::put_integer(const std::string& name, std::int64_t v) { h5_.write_attribute("/", name, v); }
 
 void PartWriter::commit() {
-  h5_.close();
+  h5_.close();  // together: every rank's part is in the file when the close returns
+  if (!leader()) {
+    committed_ = true;
+    return;
+  }
   // The digest of the bytes as written, before they are published: what a later reader must find.
   const util::FileDigest d = util::sha256_of_file(tmp_);
   io::commit_file(tmp_, path_);
@@ -88,6 +108,41 @@ std::vector<double> PartReader::doubles(const std::string& name, std::size_t exp
   std::vector<double> v = h5_.read_doubles("/" + name);
   check_length(name, v.size(), expected);
   return v;
+}
+std::vector<double> PartReader::doubles_part(const std::string& name, const io::Hdf5Shape& shape,
+                                             const io::Hdf5Shape& offset, const io::Hdf5Shape& count) const {
+  std::size_t total = 1;
+  for (const std::uint64_t n : shape) total *= static_cast<std::size_t>(n);
+  const io::Hdf5Shape found = h5_.dataset_shape("/" + name);
+  if (found == shape) return h5_.read_doubles_part("/" + name, offset, count);
+  if (found.size() != 1) {
+    std::string want, got;
+    for (const std::uint64_t n : shape) want += fmt::format("{}{}", want.empty() ? "" : " x ", n);
+    for (const std::uint64_t n : found) got += fmt::format("{}{}", got.empty() ? "" : " x ", n);
+    throw std::runtime_error(
+        fmt::format("{}: checkpoint entry '{}' is an array of {}, this run needs {} (a "
+                    "checkpoint of another mesh or scene?)",
+                    path_.string(), name, got, want));
+  }
+  const std::vector<double> whole = doubles(name, total);
+  // Row-major: the part's rows along the last axis, one after the other.
+  std::size_t n = 1;
+  for (const std::uint64_t c : count) n *= static_cast<std::size_t>(c);
+  std::vector<double> out;
+  out.reserve(n);
+  const std::size_t axes = shape.size(), row = static_cast<std::size_t>(count[axes - 1]);
+  std::vector<std::uint64_t> at(axes, 0);  // the position within the part, the last axis left at 0
+  for (std::size_t r = 0; row > 0 && r < n / row; ++r) {
+    std::size_t flat = 0;
+    for (std::size_t d = 0; d < axes; ++d) flat = flat * shape[d] + offset[d] + at[d];
+    out.insert(out.end(), whole.begin() + static_cast<std::ptrdiff_t>(flat),
+               whole.begin() + static_cast<std::ptrdiff_t>(flat + row));
+    for (std::size_t d = axes - 1; d-- > 0;) {
+      if (++at[d] < count[d]) break;
+      at[d] = 0;
+    }
+  }
+  return out;
 }
 std::vector<std::int64_t> PartReader::integers(const std::string& name, std::size_t expected) const {
   std::vector<std::int64_t> v = h5_.read_int64s("/" + name);

@@ -19,6 +19,10 @@
 
 #include "common/io/hdf5_file.h"
 
+namespace cosim::io {
+class CollectiveWrite;
+}
+
 namespace cosim::checkpoint {
 
 inline constexpr std::string_view kPartFormat = "cosim-checkpoint-1";
@@ -28,6 +32,8 @@ class PartWriter {
  public:
   // Throws std::runtime_error naming the file when it cannot be created.
   PartWriter(std::filesystem::path path, std::string_view kind);
+  // The ranks of `together` write the part together (collective HDF5); `together` outlives the writer.
+  PartWriter(std::filesystem::path path, std::string_view kind, io::CollectiveWrite& together);
   ~PartWriter();  // an uncommitted part is discarded (its temporary file removed)
   PartWriter(const PartWriter&) = delete;
   PartWriter& operator=(const PartWriter&) = delete;
@@ -35,6 +41,9 @@ class PartWriter {
   void put(const std::string& name, std::span<const double> v);
   void put(const std::string& name, std::span<const std::int64_t> v);
   void put(const std::string& name, std::span<const std::uint8_t> v);
+  // An array of `shape` (slowest axis first) of which this writer holds the part [offset, offset + count).
+  void put_part(const std::string& name, std::span<const double> part, const io::Hdf5Shape& shape,
+                const io::Hdf5Shape& offset, const io::Hdf5Shape& count);
   void put_flags(const std::string& name, const std::vector<char>& flags);  // as bytes (0/1 per entry)
   void put_text(const std::string& name, std::string_view text);
   void put_scalar(const std::string& name, double v);
@@ -44,8 +53,10 @@ class PartWriter {
 
  private:
   std::filesystem::path path_, tmp_;
+  io::CollectiveWrite* together_ = nullptr;
   io::Hdf5File h5_;
   bool committed_ = false;
+  bool leader() const;
 };
 
 class PartReader {
@@ -57,6 +68,10 @@ class PartReader {
   bool has(const std::string& name) const;
   // The array `name`; with `expected` != kAny its length must be that (std::runtime_error otherwise).
   std::vector<double> doubles(const std::string& name, std::size_t expected = kAny) const;
+  // The part [offset, offset + count) of the array `name` of `shape` (put_part); an array of that many values with
+  // one axis (a part written whole before arrays had shapes) is read whole and cut.
+  std::vector<double> doubles_part(const std::string& name, const io::Hdf5Shape& shape, const io::Hdf5Shape& offset,
+                                   const io::Hdf5Shape& count) const;
   std::vector<std::int64_t> integers(const std::string& name, std::size_t expected = kAny) const;
   std::vector<std::uint8_t> bytes(const std::string& name, std::size_t expected = kAny) const;
   std::vector<char> flags(const std::string& name) const;

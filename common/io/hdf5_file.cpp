@@ -248,21 +248,25 @@ void Hdf5File::write_dataset_part(const std::string& name, std::span<const doubl
                                   const Hdf5Shape& offset, const Hdf5Shape& count) {
   const hid_t file = checked_id("write a dataset");
   const Site site = dataset_site(path_, name);
-  if (offset.size() != shape.size() || count.size() != shape.size()) site.invalid("offset and count need one entry per axis");
-  const std::vector<hsize_t> dims = checked_dims(shape, [&] {
-    std::uint64_t n = 1;
-    for (const std::uint64_t d : shape) n *= d;
-    return static_cast<std::size_t>(n);
-  }(), site);
+  if (offset.size() != shape.size() || count.size() != shape.size())
+    site.invalid("offset and count need one entry per axis");
+  const std::vector<hsize_t> dims = checked_dims(
+      shape,
+      [&] {
+        std::uint64_t n = 1;
+        for (const std::uint64_t d : shape) n *= d;
+        return static_cast<std::size_t>(n);
+      }(),
+      site);
   const std::vector<hsize_t> part = checked_dims(count, data.size(), site);
   const std::vector<hsize_t> start(offset.begin(), offset.end());
   for (std::size_t d = 0; d < dims.size(); ++d)
     if (start[d] + part[d] > dims[d]) site.invalid(fmt::format("part beyond the dataset along axis {}", d));
   const Handle space =
       site.own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "create dataspace of");
-  const Handle dset = site.own(
-      H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-      "create");
+  const Handle dset =
+      site.own(H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Dclose, "create");
   const Handle mem =
       site.own(H5Screate_simple(static_cast<int>(part.size()), part.data(), nullptr), H5Sclose, "create dataspace of");
   site.check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, part.data(), nullptr),
@@ -308,6 +312,34 @@ std::vector<double> Hdf5File::read_doubles(const std::string& name) const {
 std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
   return read_dataset_raw<std::int64_t>(checked_id("read a dataset"), dataset_site(path_, name), name,
                                         H5T_NATIVE_INT64);
+}
+
+std::vector<double> Hdf5File::read_doubles_part(const std::string& name, const Hdf5Shape& offset,
+                                                const Hdf5Shape& count) const {
+  const hid_t file = checked_id("read a dataset");
+  const Site site = dataset_site(path_, name);
+  const Handle dset = site.own(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose, "open");
+  const Handle space = site.own(H5Dget_space(dset.get()), H5Sclose, "query");
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) site.fail("query rank of");
+  if (offset.size() != static_cast<std::size_t>(rank) || count.size() != offset.size())
+    site.invalid(fmt::format("a part of {} axes asked of a dataset of {}", count.size(), rank));
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  site.check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "query shape of");
+  const std::vector<hsize_t> start(offset.begin(), offset.end()), part(count.begin(), count.end());
+  std::size_t n = 1;
+  for (std::size_t d = 0; d < dims.size(); ++d) {
+    if (start[d] + part[d] > dims[d]) site.invalid(fmt::format("part beyond the dataset along axis {}", d));
+    n *= static_cast<std::size_t>(part[d]);
+  }
+  std::vector<double> out(n);
+  if (n == 0) return out;
+  site.check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, part.data(), nullptr),
+             "select the part of");
+  const Handle mem =
+      site.own(H5Screate_simple(static_cast<int>(part.size()), part.data(), nullptr), H5Sclose, "create dataspace of");
+  site.check(H5Dread(dset.get(), H5T_NATIVE_DOUBLE, mem.get(), space.get(), H5P_DEFAULT, out.data()), "read");
+  return out;
 }
 
 namespace {

@@ -54,6 +54,9 @@ class Hdf5File {
   std::vector<double> read_doubles(const std::string& name) const;       // flattened, row-major
   std::vector<std::int64_t> read_int64s(const std::string& name) const;  // flattened, row-major
   std::vector<std::uint8_t> read_bytes(const std::string& name) const;   // flattened, row-major
+  // The part [offset, offset + count) of a dataset of doubles, row-major; offset and count have one entry per axis
+  // of the dataset (std::invalid_argument otherwise, or for a part beyond it).
+  std::vector<double> read_doubles_part(const std::string& name, const Hdf5Shape& offset, const Hdf5Shape& count) const;
 
   // Attributes on an existing object ("/" is the root). Scalars get a scalar dataspace, spans a 1-D one.
   // An existing attribute of the same name is replaced.

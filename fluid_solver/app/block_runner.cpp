@@ -9,11 +9,12 @@
 #include <chrono>
 #include <cstdlib>
 
+#include "common/app/rank_failure.h"
 #include "common/app/threads.h"
-#include "common/io/atomic_file.h"
-#include "common/parallel/mpi/rank_watchdog.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/config/config.h"
+#include "common/io/atomic_file.h"
+#include "common/parallel/mpi/rank_watchdog.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/app/runner.h"
 #include "fluid_solver/io/fluid_output.h"
@@ -73,9 +74,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     sim = make_simulation(scene);
     links = std::make_unique<CartBlockLinks>(*comm, scene);
     sim->set_block_links(links.get());
-  } catch (const std::exception& e) {
-    setup_error = e.what();
-  }
+  } catch (const std::exception& e) { setup_error = e.what(); }
   if (!root) spdlog::set_level(spdlog::level::err);
   if (!setup_error.empty())
     spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
@@ -107,24 +106,14 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   // A rank that falls silent (stopped, hung) ends the run; the rank that notices says so in summary.json.
   const double silence = parallel::rank_silence_timeout();
   parallel::RankWatchdog watchdog(silence, [&, name = scene.name](const std::string& message, int silent, int code) {
-    spdlog::error("{}", message);
-    const nlohmann::json j{{"status", "failed"},
-                           {"error", message},
-                           {"scene", name},
-                           {"exit_code", code},
-                           {"parallel", {{"ranks", mpi.size()}, {"failed_rank", silent}, {"noticed_by", mpi.rank()}}}};
-    try {
-      io::write_file_atomically(opt.out_dir / "summary.json", j.dump(2) + "\n");
-    } catch (const std::exception& e) {
-      spdlog::error("cannot write summary.json: {}", e.what());
-    }
+    app::write_silent_rank_summary(opt.out_dir, name, message, mpi.size(), silent, mpi.rank(), code);
   });
   app::install_interrupt_handlers();
   io::SnapshotSeries series(opt.out_dir, "fluid");  // every rank's (rank 0 publishes the files)
   RunRecord rec;
   rec.cells = cells;
-  app::DriveOptions drive_opt{scene.output_times, scene.t_end, scene.max_steps, 0.0, cells, "Mcell-updates/s",
-                              opt.quiet || !root};
+  app::DriveOptions drive_opt{scene.output_times, scene.t_end,       scene.max_steps, 0.0, cells,
+                              "Mcell-updates/s",  opt.quiet || !root};
   // A failure on this rank alone: its summary and message, then every rank ends with its code.
   const auto fail_alone = [&](int code, const std::string& error) {
     rec.status = code == 130 ? "interrupted" : "failed";
@@ -133,18 +122,13 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
                             scene.block.first[1] + scene.block.count[1], scene.block.first[2],
                             scene.block.first[2] + scene.block.count[2]);
     spdlog::error("{}: {}", mpi.describe(), rec.error);
-    // Interrupted because another rank failed and aborted the run (mpirun's SIGTERM, also to the rank whose watchdog
-    // noticed a silent rank): the summary that rank wrote before its abort stays.
-    if (code == 130 && comm->size() > 1 && std::filesystem::exists(opt.out_dir / "summary.json"))
-      parallel::MpiSession::abort_all(code);
+    if (app::keeps_another_ranks_summary(code, comm->size(), opt.out_dir)) parallel::MpiSession::abort_all(code);
     rec.extra["parallel"] =
         parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds(), comm->halo_wait_seconds());
     rec.extra["parallel"]["failed_rank"] = comm->rank();
     try {
       write_summary(opt.out_dir, *sim, rec);  // this rank's totals only: the others cannot be asked
-    } catch (const std::exception& e) {
-      spdlog::error("cannot write summary.json: {}", e.what());
-    }
+    } catch (const std::exception& e) { spdlog::error("cannot write summary.json: {}", e.what()); }
     parallel::MpiSession::abort_all(code);
   };
   if (!opt.restart.empty()) {
@@ -167,10 +151,11 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     rec.start_totals = totals_json(scene, totals_over_blocks(*sim, *comm));
     if (root && !opt.checkpoints.empty()) checkpoint::clear(opt.checkpoints);  // an earlier run's sets
   }
-  // fluid.checkpoint: a set of one part (fluid.h5, the whole mesh), complete with its manifest.
+  // fluid.checkpoint: a set of one part (fluid.h5, the whole mesh, written by every rank), complete with its manifest.
   const auto write_checkpoint = [&] {
     std::filesystem::path dir;
     if (root) dir = checkpoint::prepare_set(opt.checkpoints, sim->steps());
+    dir = comm->broadcast(dir.string());  // the set's folder exists before the ranks create its part together
     const std::string part = write_fluid_part_over_blocks(
         dir, *sim, series, {sim->steps(), sim->time(), rec.start_totals, nlohmann::json::object()}, *comm);
     if (!root) return;

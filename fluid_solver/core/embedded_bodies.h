@@ -148,7 +148,9 @@ class EmbeddedBodiesRun final : public FluidSimulation {
         surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order),
         ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface),
-        conservative_(s.embedded.conservative) {
+        conservative_(s.embedded.conservative),
+        at_rest_(std::all_of(surface_.velocities.begin(), surface_.velocities.end(),
+                             [](const embedded::Vec3& v) { return v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0; })) {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
     if (block_.whole()) update();
@@ -161,6 +163,8 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   double stable_dt() override { return inner_->stable_dt(); }
   void advance(double dt) override {
     inner_->advance(dt);
+    // Bodies at rest without an interface pressure: the geometry, the records and the far cells' plan stay as cut.
+    if (at_rest_ && !ghost_wall_pressure_) return;
     embedded::move_surface(surface_, dt);
     update();
   }
@@ -388,8 +392,9 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   bool second_order_;
   bool ghost_wall_pressure_;
   bool conservative_;                    // embedded.conservative: the cells' fluid fractions with each geometry
+  bool at_rest_;                         // every vertex at rest: the geometry is cut once
   bool restored_wall_pressure_ = false;  // wall_pressure_ from a checkpoint set, for the restart's first geometry
-  std::vector<double> wall_pressure_;  // per Surface face, 2 slots (phases); NaN: not wetted
+  std::vector<double> wall_pressure_;    // per Surface face, 2 slots (phases); NaN: not wetted
   double geometry_seconds_ = 0;
 };
 

@@ -228,170 +228,22 @@ class Solver final : public FluidSimulation {
     ++steps_;
   }
 
-  PhaseFields phase_fields(int k) const override {
-    PhaseFields f;
-    const std::size_t n = g_.interior_count();
-    f.alpha.resize(n);
-    f.rho.resize(n);
-    f.velocity.assign(3 * n, 0.0);
-    f.p.resize(n);
-    f.T.resize(n);
-    if (k == 1 && gran_) f.theta.resize(n);
-    std::size_t o = 0;
-    for (int kk = 0; kk < g_.n[2]; ++kk)
-      for (int j = 0; j < g_.n[1]; ++j)
-        for (int i = 0; i < g_.n[0]; ++i, ++o) {
-          const std::size_t c = g_.index(i, j, kk);
-          double a = 1.0;
-          if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
-          const double m = U_.var(Lay::mass(k))[c];
-          const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
-          const double rho = m / av;
-          double q = 0;
-          for (int d = 0; d < DIM; ++d) {
-            f.velocity[3 * o + d] = U_.var(Lay::mom(k, d))[c] / m;
-            q += f.velocity[3 * o + d] * f.velocity[3 * o + d];
-          }
-          const double rhoe = material_energy(U_, k, c) / av;
-          f.alpha[o] = a;
-          f.rho[o] = rho;
-          f.p[o] = eos_[k].pressure(rho, rhoe / rho);
-          f.T[o] = eos_[k].temperature(rho, f.p[o]);
-          if (k == 1 && gran_) f.theta[o] = std::max(0.0, granular_per_mass(U_, c) * (2.0 / 3.0));
-        }
-    return f;
-  }
-
-  void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override {
-    for (std::size_t n = 0; n < count; ++n) {
-      const std::size_t c = cells[n];
-      for (int k = 0; k < NP; ++k) {
-        CellSample& o = out[n * NP + k];
-        double a = 1.0;
-        if constexpr (NP == 2) a = k == 0 ? U_.var(Lay::alpha)[c] : 1.0 - U_.var(Lay::alpha)[c];
-        const double m = U_.var(Lay::mass(k))[c];
-        double q = 0;
-        o.velocity = {0, 0, 0};
-        for (int d = 0; d < DIM; ++d) {
-          o.velocity[d] = U_.var(Lay::mom(k, d))[c] / m;
-          q += o.velocity[d] * o.velocity[d];
-        }
-        o.alpha = a;
-        const double av = a * fluid_volume(c);  // embedded.conservative: content over the fluid volume
-        o.rho = m / av;
-        const double rhoe = material_energy(U_, k, c) / av;
-        o.p = eos_[k].pressure(o.rho, rhoe / o.rho);
-        o.c = eos_[k].sound_speed(o.rho, o.p);
-        if (k == 1 && gran_) o.granular = std::max(0.0, granular_per_mass(U_, c));
-      }
-    }
-  }
-
-  std::vector<PhaseTotals> boundary_inflow() const override {
-    std::vector<PhaseTotals> out(NP);
-    for (int k = 0; k < NP; ++k) {
-      out[k].mass = inflow_[fvar_flux(k, 0)];
-      for (int d = 0; d < DIM; ++d) out[k].momentum[d] = inflow_[fvar_flux(k, 1 + d)];
-      out[k].energy = inflow_[fvar_flux(k, 1 + DIM)];
-    }
-    return out;
-  }
-
-  std::vector<EmbeddedMassAccount> embedded_mass_account() const override {
-    std::vector<EmbeddedMassAccount> out(NP);
-    for (int k = 0; k < NP; ++k) out[k] = {mass_by_walls_[k], mass_by_cells_[k]};
-    return out;
-  }
-
-  std::vector<PhaseTotals> embedded_wall_exchange() const override {
-    std::vector<PhaseTotals> out(NP);
-    for (int k = 0; k < NP; ++k) {
-      out[k].mass = wall_[fvar_flux(k, 0)];
-      for (int d = 0; d < DIM; ++d) out[k].momentum[d] = wall_[fvar_flux(k, 1 + d)];
-      out[k].energy = wall_[fvar_flux(k, 1 + DIM)];
-    }
-    return out;
-  }
-
-  void save_state(checkpoint::PartWriter& w) const override {
-    write_fluid_state(w, {conserved_cells(), account_values(), t_, steps_, ncons_, {}}, 2 * NP, wall_.size());
-  }
-
-  void restore_state(const checkpoint::PartReader& r) override {
-    const FluidStateEntries e =
-        read_fluid_state(r, ncons_, g_.interior_count(), 0, inflow_.size(), 2 * NP, wall_.size());
-    set_conserved_cells(e.conserved);
-    restore_progress(e.time, e.steps, e.accounts);
-  }
-
-  std::vector<double> account_values() const override {
-    std::vector<double> out(inflow_.begin(), inflow_.end());
-    out.insert(out.end(), mass_by_walls_.begin(), mass_by_walls_.end());
-    out.insert(out.end(), mass_by_cells_.begin(), mass_by_cells_.end());
-    out.insert(out.end(), wall_.begin(), wall_.end());
-    return out;
-  }
-  void restore_progress(double time, long steps, const std::vector<double>& accounts) override {
-    // inflow, the embedded mass account and (absent in older checkpoints: zero) the wall exchange
-    const std::size_t base = inflow_.size() + 2 * NP;
-    if (accounts.size() != base && accounts.size() != base + wall_.size())
-      throw std::invalid_argument(fmt::format("{} account values, {} expected", accounts.size(), base + wall_.size()));
-    const auto at = [&](std::size_t i) { return accounts.begin() + static_cast<std::ptrdiff_t>(i); };
-    std::copy(at(0), at(inflow_.size()), inflow_.begin());
-    std::copy(at(inflow_.size()), at(inflow_.size() + NP), mass_by_walls_.begin());
-    std::copy(at(inflow_.size() + NP), at(base), mass_by_cells_.begin());
-    wall_.fill(0.0);
-    if (accounts.size() > base) std::copy(at(base), accounts.end(), wall_.begin());
-    t_ = time;
-    steps_ = steps;
-    primitives_valid_ = false;
-  }
-
+  // The state as others read and set it (solver_state.h).
+  PhaseFields phase_fields(int k) const override;
+  void cell_states(const std::size_t* cells, std::size_t count, CellSample* out) const override;
+  std::vector<PhaseTotals> boundary_inflow() const override;
+  std::vector<EmbeddedMassAccount> embedded_mass_account() const override;
+  std::vector<PhaseTotals> embedded_wall_exchange() const override;
+  std::vector<PhaseTotals> totals() const override;
+  void save_state(checkpoint::PartWriter& w) const override;
+  void restore_state(const checkpoint::PartReader& r) override;
+  CellRange cells_held() const { return CellRange::of(g_.mesh, g_.first, g_.n); }
+  std::vector<double> account_values() const override;
+  void restore_progress(double time, long steps, const std::vector<double>& accounts) override;
   int conserved_vars() const override { return ncons_; }
-  std::vector<double> conserved_cells() const override {
-    std::vector<double> out;
-    out.reserve(static_cast<std::size_t>(ncons_) * g_.interior_count());
-    for (int v = 0; v < ncons_; ++v)
-      for (int k = 0; k < g_.n[2]; ++k)
-        for (int j = 0; j < g_.n[1]; ++j) {
-          const double* row = U_.var(v) + g_.index(0, j, k);
-          out.insert(out.end(), row, row + g_.n[0]);
-        }
-    return out;
-  }
-  void set_conserved_cells(const std::vector<double>& values) override {
-    if (values.size() != static_cast<std::size_t>(ncons_) * g_.interior_count())
-      throw std::invalid_argument(
-          fmt::format("{} conserved values for {} variables of {} cells", values.size(), ncons_, g_.interior_count()));
-    const double* in = values.data();
-    for (int v = 0; v < ncons_; ++v)
-      for (int k = 0; k < g_.n[2]; ++k)
-        for (int j = 0; j < g_.n[1]; ++j, in += g_.n[0]) std::copy(in, in + g_.n[0], U_.var(v) + g_.index(0, j, k));
-    U0_.data = U_.data;
-    primitives_valid_ = false;
-    restored_cells_ = true;
-  }
+  std::vector<double> conserved_cells() const override;
+  void set_conserved_cells(const std::vector<double>& values) override;
   void set_block_links(BlockLinks* links) override { links_ = links; }
-
-  std::vector<PhaseTotals> totals() const override {
-    std::vector<PhaseTotals> out(NP);
-    const double vol = g_.cell_volume();
-    for (int k = 0; k < NP; ++k) {
-      for (int kk = 0; kk < g_.n[2]; ++kk)
-        for (int j = 0; j < g_.n[1]; ++j)
-          for (int i = 0; i < g_.n[0]; ++i) {
-            const std::size_t c = g_.index(i, j, kk);
-            if (emb_.active && !is_flow_cell(emb_.kind[c])) continue;  // the fluid domain only
-            out[k].mass += U_.var(Lay::mass(k))[c];
-            for (int d = 0; d < DIM; ++d) out[k].momentum[d] += U_.var(Lay::mom(k, d))[c];
-            out[k].energy += U_.var(Lay::energy(k))[c];
-          }
-      out[k].mass *= vol;
-      for (auto& m : out[k].momentum) m *= vol;
-      out[k].energy *= vol;
-    }
-    return out;
-  }
 
  private:
   struct Scratch;  // per-thread row buffers (below)
@@ -608,7 +460,7 @@ class Solver final : public FluidSimulation {
   std::array<double, NP> mass_by_walls_{}, step_wall_mass_{}, mass_by_cells_{};
   // embedded_wall_exchange(): what the wall faces put into the flow cells since the start and this step.
   std::array<double, NP*(2 + DIM)> wall_{}, step_wall_{};
-  bool conservative_ = false;  // embedded.conservative (solver_conservative.h)
+  bool conservative_ = false;    // embedded.conservative (solver_conservative.h)
   bool restored_cells_ = false;  // set_conserved_cells since the last set_embedded
   // Per padded cell: the fluid volume a flow cell stands for over the cell's volume (its own fluid fraction and a
   // share of the fluid in the ghost cells next to it), and scratch for the shares.
@@ -634,5 +486,6 @@ class Solver final : public FluidSimulation {
 #include "fluid_solver/core/solver_primitives.h"
 #include "fluid_solver/core/solver_reconstruction.h"
 #include "fluid_solver/core/solver_stage.h"
+#include "fluid_solver/core/solver_state.h"
 #include "fluid_solver/core/solver_sweep.h"
 #include "fluid_solver/core/solver_two_phase_faces.h"

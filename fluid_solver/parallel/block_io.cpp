@@ -120,86 +120,76 @@ void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulatio
                               merge_segment_rows(parts));
 }
 
+namespace {
+// This rank's cells within the mesh.
+CellRange block_range(const parallel::CartComm& comm) {
+  const parallel::Block& b = comm.block();
+  return CellRange::of(comm.cells(), b.lower,
+                       {b.upper[0] - b.lower[0], b.upper[1] - b.lower[1], b.upper[2] - b.lower[2]});
+}
+}  // namespace
+
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
                                          const io::SnapshotSeries& series, const FluidRunState& run,
                                          const parallel::CartComm& comm) {
   if (comm.size() == 1) return write_fluid_part(dir, sim, series, run);
-  const std::vector<double> local = sim.conserved_cells();
-  const std::size_t cells = sim.interior_cells();
-  const int vars = sim.conserved_vars();
-  std::vector<double> global;
-  for (int v = 0; v < vars; ++v) {  // variable by variable: rank 0 holds the mesh's cells of one more at a time
-    const std::vector<double> g =
-        comm.gather_cells(std::span<const double>(local.data() + static_cast<std::size_t>(v) * cells, cells), 1);
-    global.insert(global.end(), g.begin(), g.end());
-  }
+  // Every rank writes its block of the mesh's cells into one file (collective HDF5; no rank holds another's cells);
+  // the accounts are sums over the blocks; the rest is alike on every rank.
   std::vector<double> accounts = sim.account_values();
   comm.sum(accounts);
-  if (comm.rank() == 0) {
-    checkpoint::PartWriter w(dir / kFluidPart, "fluid");
-    w.put_integer("cycle", run.cycle);
-    w.put_scalar("time", run.time);
-    const auto phases = static_cast<std::size_t>(sim.scene().num_phases());
-    write_fluid_state(w, {std::move(global), std::move(accounts), sim.time(), sim.steps(), vars, sim.body_state()},
-                      2 * phases, sim.embedded_wall_exchange().empty() ? 0 : phases * (2 + sim.scene().dim));
-    checkpoint::put_series(w, "fluid", series);
-    w.put_text("run.start_totals", run.start_totals.dump());
-    w.put_text("run.counters", run.counters.dump());
-    w.commit();
-  }
+  const std::unique_ptr<io::CollectiveWrite> together = comm.collective_write();
+  checkpoint::PartWriter w(dir / kFluidPart, "fluid", *together);
+  w.put_integer("cycle", run.cycle);
+  w.put_scalar("time", run.time);
+  const auto phases = static_cast<std::size_t>(sim.scene().num_phases());
+  write_fluid_state(w,
+                    {sim.conserved_cells(), std::move(accounts), sim.time(), sim.steps(), sim.conserved_vars(),
+                     sim.body_state(), block_range(comm)},
+                    2 * phases, sim.embedded_wall_exchange().empty() ? 0 : phases * (2 + sim.scene().dim));
+  checkpoint::put_series(w, "fluid", series);
+  w.put_text("run.start_totals", run.start_totals.dump());
+  w.put_text("run.counters", run.counters.dump());
+  w.commit();
   return kFluidPart;
 }
 
 FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
                                           io::SnapshotSeries& series, const parallel::CartComm& comm) {
   if (comm.size() == 1) return read_fluid_part(set, sim, series);
-  // Rank 0 reads and checks the part; what it found (or why it failed) reaches every rank.
-  const int vars = sim.conserved_vars();
-  std::size_t global_cells = 1;
-  for (int d = 0; d < 3; ++d) global_cells *= static_cast<std::size_t>(comm.cells()[d]);
+  // Rank 0 checks the part against its set's manifest and reads what every rank shares; what it found (or why it
+  // failed) reaches every rank. Then each rank reads its own block of the cells.
   nlohmann::json head;
-  std::vector<double> cells;
   if (comm.rank() == 0) {
     try {
       const checkpoint::PartReader r = checkpoint::open_verified_part(set, kFluidPart, "fluid");
-      FluidStateEntries e = read_fluid_state(r, vars, global_cells, sim.body_state().size());
-      cells = std::move(e.conserved);
       head = {{"cycle", r.integer("cycle")},
               {"run_time", r.scalar("time")},
-              {"time", e.time},
-              {"steps", e.steps},
-              {"accounts", e.accounts},
-              {"body_vertices", e.body_vertices},
               {"start_totals", r.text("run.start_totals")},
               {"counters", r.text("run.counters")}};
       checkpoint::resume_series(r, "fluid", series);
       io::remove_numbered_files(series.xdmf_path().parent_path(), "fluid_interface_", ".csv", series.count());
       head["series"] = series.entries();
-    } catch (const std::exception& e) {
-      head = {{"error", e.what()}};
-    }
+    } catch (const std::exception& e) { head = {{"error", e.what()}}; }
   }
   head = nlohmann::json::parse(comm.broadcast(head.dump()));
   if (head.contains("error")) throw std::runtime_error(head["error"].get<std::string>());
   if (comm.rank() != 0) series.follow(head["series"].get<std::vector<std::string>>());
-  std::vector<double> local;
-  for (int v = 0; v < vars; ++v) {
-    const std::span<const double> g =
-        comm.rank() == 0 ? std::span<const double>(cells.data() + static_cast<std::size_t>(v) * global_cells,
-                                                   global_cells)
-                         : std::span<const double>();
-    const std::vector<double> part = comm.scatter_cells(g, 1);
-    local.insert(local.end(), part.begin(), part.end());
-  }
-  sim.set_conserved_cells(local);
+  FluidStateEntries e;
+  std::string error;
+  try {
+    const checkpoint::PartReader r(set / kFluidPart, "fluid");
+    e = read_fluid_state(r, sim.conserved_vars(), block_range(comm), sim.body_state().size());
+  } catch (const std::exception& x) { error = x.what(); }
+  if (comm.any(!error.empty()))
+    throw std::runtime_error(
+        error.empty() ? fmt::format("another rank could not read its block of {}", (set / kFluidPart).string())
+                      : fmt::format("rank {}: {}", comm.rank(), error));
+  sim.set_conserved_cells(e.conserved);
   // The accounts are sums over the blocks: rank 0 carries the global sums on, the others start from zero.
-  std::vector<double> accounts = head["accounts"].get<std::vector<double>>();
-  if (comm.rank() != 0) std::fill(accounts.begin(), accounts.end(), 0.0);
-  sim.restore_progress(head["time"].get<double>(), head["steps"].get<long>(), accounts);
-  // The bodies where the set left them, cut anew with the restored state (every block together; JSON keeps the
-  // doubles exact).
-  const std::vector<double> vertices = head["body_vertices"].get<std::vector<double>>();
-  if (!vertices.empty()) sim.set_body_state(vertices);
+  if (comm.rank() != 0) std::fill(e.accounts.begin(), e.accounts.end(), 0.0);
+  sim.restore_progress(e.time, e.steps, e.accounts);
+  // The bodies where the set left them, cut anew with the restored state (every block together).
+  if (!e.body_vertices.empty()) sim.set_body_state(e.body_vertices);
   FluidRunState run;
   run.cycle = head["cycle"].get<long>();
   run.time = head["run_time"].get<double>();

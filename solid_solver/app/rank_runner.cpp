@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "common/app/rank_failure.h"
 #include "common/checkpoint/checkpoint_sets.h"
 #include "common/checkpoint/output_resume.h"
 #include "common/io/atomic_file.h"
@@ -172,15 +173,7 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   // A rank that falls silent (stopped, hung) ends the run; the rank that notices says so in summary.json.
   const double silence = parallel::rank_silence_timeout();
   parallel::RankWatchdog watchdog(silence, [&, name = scene.name](const std::string& message, int silent, int code) {
-    spdlog::error("{}", message);
-    const nlohmann::json j{{"status", "failed"},
-                           {"error", message},
-                           {"scene", name},
-                           {"exit_code", code},
-                           {"parallel", {{"ranks", mpi.size()}, {"failed_rank", silent}, {"noticed_by", mpi.rank()}}}};
-    try {
-      io::write_file_atomically(opt.out_dir / "summary.json", j.dump(2) + "\n");
-    } catch (const std::exception& e) { spdlog::error("cannot write summary.json: {}", e.what()); }
+    app::write_silent_rank_summary(opt.out_dir, name, message, mpi.size(), silent, mpi.rank(), code);
   });
   app::install_interrupt_handlers();
   std::unique_ptr<io::SnapshotSeries> series;
@@ -235,9 +228,7 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
     rec.status = code == 130 ? "interrupted" : "failed";
     rec.error = fmt::format("{} ({}, {} elements)", error, mpi.describe(), part.owned_elements);
     spdlog::error("{}: {}", mpi.describe(), error);
-    // Interrupted because another rank failed and aborted the run: that rank's summary (written before its abort)
-    // stays.
-    if (code == 130 && std::filesystem::exists(opt.out_dir / "summary.json")) parallel::MpiSession::abort_all(code);
+    if (app::keeps_another_ranks_summary(code, mpi.size(), opt.out_dir)) parallel::MpiSession::abort_all(code);
     rec.extra["parallel"] = {{"ranks", mpi.size()}, {"layout", "metis"}, {"failed_rank", mpi.rank()}};
     rec.end = sim->energy();  // this rank's share only: the others cannot be asked
     try {

@@ -88,6 +88,47 @@ TEST(CheckpointPart, AnUncommittedPartLeavesNothing) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
+TEST(CheckpointPart, AShapedArrayIsReadBackByPartsAndAnUnshapedOneTheSame) {
+  // A 2 x 3 x 4 x 5 array (variables, z, y, x) as the blocks of a split mesh write it, and the same values as one
+  // axis (a part from before arrays had shapes): every block reads the same values from either.
+  const cosim::io::Hdf5Shape shape{2, 3, 4, 5};
+  std::vector<double> all(2 * 3 * 4 * 5);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = 0.5 * static_cast<double>(i) - 7.0;
+  const fs::path dir = cosim::test::scratch_path("ck_shaped");
+  fs::create_directories(dir);
+  {
+    PartWriter w(dir / "shaped.h5", "fluid");
+    w.put_part("cells", all, shape, {0, 0, 0, 0}, shape);
+    w.commit();
+    PartWriter flat(dir / "flat.h5", "fluid");
+    flat.put("cells", all);
+    flat.commit();
+  }
+  const cosim::io::Hdf5Shape offset{0, 1, 2, 1}, count{2, 2, 2, 3};
+  std::vector<double> expected;
+  for (std::uint64_t v = 0; v < 2; ++v)
+    for (std::uint64_t k = 1; k < 3; ++k)
+      for (std::uint64_t j = 2; j < 4; ++j)
+        for (std::uint64_t i = 1; i < 4; ++i) expected.push_back(all[((v * 3 + k) * 4 + j) * 5 + i]);
+  for (const char* name : {"shaped.h5", "flat.h5"}) {
+    const PartReader r(dir / name, "fluid");
+    EXPECT_EQ(r.doubles_part("cells", shape, offset, count), expected) << name;
+    EXPECT_EQ(r.doubles_part("cells", shape, {0, 0, 0, 0}, shape), all) << name;
+  }
+  // Another mesh's array is refused with both shapes named; so is a part beyond the array.
+  const PartReader r(dir / "shaped.h5", "fluid");
+  try {
+    r.doubles_part("cells", {2, 3, 5, 4}, {0, 0, 0, 0}, {2, 3, 5, 4});
+    ADD_FAILURE() << "another shape was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 x 3 x 4 x 5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("2 x 3 x 5 x 4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(r.doubles_part("cells", shape, {0, 2, 0, 0}, {2, 2, 4, 5}), std::invalid_argument);
+  const PartReader flat(dir / "flat.h5", "fluid");
+  EXPECT_THROW(flat.doubles_part("cells", {2, 3, 4, 6}, {0, 0, 0, 0}, {2, 3, 4, 6}), std::runtime_error);
+}
+
 TEST(CheckpointSets, OnlyCompleteSetsCountAndTheNewestIsChosen) {
   const fs::path root = cosim::test::scratch_path("ck_sets");
   EXPECT_THROW(find_set(root), std::runtime_error);  // none written

@@ -208,19 +208,21 @@ TEST(FluidStateEntries, TheWallExchangeIsWrittenAndAnOlderPartReadsWithoutIt) {
     {
       checkpoint::PartWriter w(path, "fluid");
       const std::vector<double> accounts(acc.begin(), with_wall ? acc.end() : acc.begin() + base);
-      write_fluid_state(w, {{1.0, 2.0, 3.0}, accounts, 0.75, 12, 3, {}}, embedded.size(), with_wall ? wall.size() : 0);
+      write_fluid_state(w, {{1.0, 2.0, 3.0}, accounts, 0.75, 12, 3, {}, CellRange{}}, embedded.size(),
+                        with_wall ? wall.size() : 0);
       w.commit();
     }
     const checkpoint::PartReader r(path, "fluid");
     EXPECT_EQ(r.has("fluid.embedded_wall_exchange"), with_wall);
-    const FluidStateEntries e = read_fluid_state(r, 3, 1, 0, inflow.size(), embedded.size(), wall.size());
+    const FluidStateEntries e = read_fluid_state(r, 3, CellRange{}, 0, inflow.size(), embedded.size(), wall.size());
     EXPECT_EQ(e.accounts, std::vector<double>(acc.begin(), with_wall ? acc.end() : acc.begin() + base));
     EXPECT_EQ(e.time, 0.75);
     EXPECT_EQ(e.steps, 12);
     EXPECT_EQ(e.conserved, (std::vector<double>{1.0, 2.0, 3.0}));
     // A part whose wall exchange has another length (another dimension or phase count) is refused.
     if (with_wall) {
-      EXPECT_THROW(read_fluid_state(r, 3, 1, 0, inflow.size(), embedded.size(), 2 * wall.size()), std::runtime_error);
+      EXPECT_THROW(read_fluid_state(r, 3, CellRange{}, 0, inflow.size(), embedded.size(), 2 * wall.size()),
+                   std::runtime_error);
     }
   }
 }

@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -113,6 +114,56 @@ inline std::string series_difference(const std::filesystem::path& a, const std::
     }
   }
   return "";
+}
+
+// The newest checkpoint set under run/checkpoints; empty when there is none.
+inline std::filesystem::path newest_set(const std::filesystem::path& run) {
+  std::filesystem::path newest;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(run / "checkpoints", ec))
+    if (e.is_directory() && e.path() > newest) newest = e.path();
+  return newest;
+}
+
+// SOLVER SCENE with `sets` on `from` ranks, stopped early by `stop_early` (arguments that end it after a set was
+// written), then restarted from its newest set on `to` ranks with `sets`: the run's folder, its ends logged as
+// failures of the calling test where they fail (then the folder is empty).
+inline std::filesystem::path run_then_restart(const std::string& solver, const std::string& scene,
+                                              const std::string& sets, const std::string& stop_early, int from, int to,
+                                              const std::string& name) {
+  const auto out = scratch_path(name);
+  const RankRun a = run_solver_ranks(solver, from, scene, out, sets + " " + stop_early, 300);
+  if (a.code != 0) {
+    ADD_FAILURE() << name << ": the first run failed\n" << a.log;
+    return {};
+  }
+  const std::filesystem::path set = newest_set(out);
+  if (set.empty()) {
+    ADD_FAILURE() << name << ": no checkpoint set\n" << a.log;
+    return {};
+  }
+  const RankRun b = run_solver_ranks(solver, to, scene, out, sets + " --restart " + set.string(), 300);
+  if (b.code != 0) {
+    ADD_FAILURE() << name << ": the restart failed\n" << b.log;
+    return {};
+  }
+  return out;
+}
+
+// A run of 2 ranks one of which was stopped (SIGSTOP): ended by the other's watchdog with code 5, the silent rank
+// and the one that noticed it in summary.json and the log, no process of SOLVER left behind.
+inline void expect_stopped_rank_named(const std::string& solver, const std::filesystem::path& out, const RankRun& r) {
+  EXPECT_EQ(r.code, 5) << r.log;
+  EXPECT_NE(r.log.find("has been silent for"), std::string::npos) << r.log;
+  const nlohmann::json s = summary_of(out);
+  EXPECT_EQ(s["status"].get<std::string>(), "failed");
+  const int silent = s["parallel"]["failed_rank"].get<int>();
+  EXPECT_TRUE(silent == 0 || silent == 1) << s.dump();
+  EXPECT_EQ(s["parallel"]["noticed_by"].get<int>(), 1 - silent) << s.dump();
+  EXPECT_NE(r.log.find("rank " + std::to_string(silent) + " of 2 has been silent"), std::string::npos) << r.log;
+  const std::string pattern = solver.substr(0, solver.size() - 1) + "[" + solver.back() + "]";
+  EXPECT_NE(std::system(("pgrep -f '" + pattern + " .*--out " + out.string() + " ' > /dev/null").c_str()), 0)
+      << "a rank was left behind";
 }
 
 }  // namespace cosim::test

@@ -1,10 +1,10 @@
 // The MPI module on 1 to 4 ranks (tests/programs/cart_comm_check under mpirun): the ghost layers of every block equal
-// the cells they stand for, on open and periodic axes, in 1D, 2D and 3D; gathers, scatters and reductions.
+// the cells they stand for, on open and periodic axes, in 1D, 2D and 3D; the reductions and the broadcast.
 #include <gtest/gtest.h>
 
 #include "tests/parallel/rank_runs.h"
 
-TEST(CartComm, GhostLayersGathersAndReductionsOnOneToFourRanks) {
+TEST(CartComm, GhostLayersAndReductionsOnOneToFourRanks) {
   const std::string program = std::string(COSIM_BINARY_DIR) + "/bin/cart_comm_check";
   const auto log = cosim::test::scratch_path("cart_comm_check.log");
   for (const char* mesh : {"1 30 1 1", "2 17 12 1", "3 9 8 7"})
@@ -14,8 +14,7 @@ TEST(CartComm, GhostLayersGathersAndReductionsOnOneToFourRanks) {
                                 std::to_string(periodic) + " > " + log.string() + " 2>&1";
         const int status = std::system(cmd.c_str());
         const std::string out = cosim::test::read_text(log);
-        EXPECT_EQ(WEXITSTATUS(status), 0) << mesh << ", " << ranks << " ranks, periodic " << periodic << ":\n"
-                                          << out;
+        EXPECT_EQ(WEXITSTATUS(status), 0) << mesh << ", " << ranks << " ranks, periodic " << periodic << ":\n" << out;
         std::printf("[ measured ] %s", out.c_str());
       }
 }

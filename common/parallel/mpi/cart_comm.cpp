@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <stdexcept>
-#include <thread>
 
 namespace cosim::parallel {
 
@@ -20,37 +19,6 @@ namespace {
 MPI_Comm& as_comm(void* p) { return *static_cast<MPI_Comm*>(p); }
 
 }  // namespace
-
-namespace detail {
-
-// Waits for the requests, testing them and sleeping between tests once a few microseconds have passed: a rank that
-// waits leaves its core to the ranks it waits for (oversubscribed), at a cost of at most the longest sleep (100 us)
-// of latency on a dedicated core.
-// COSIM_MPI_WAIT=spin tests without sleeping (for the benchmark that measures what the sleeps save).
-void wait_passively(int count, MPI_Request* requests) {
-  static const bool spin = [] {
-    const char* v = std::getenv("COSIM_MPI_WAIT");
-    return v && std::string(v) == "spin";
-  }();
-  int done = 0;
-  if (spin) {
-    while (!done) MPI_Testall(count, requests, &done, MPI_STATUSES_IGNORE);
-    return;
-  }
-  for (int spins = 0; spins < 64; ++spins) {
-    MPI_Testall(count, requests, &done, MPI_STATUSES_IGNORE);
-    if (done) return;
-  }
-  auto pause = std::chrono::microseconds(2);
-  while (true) {
-    MPI_Testall(count, requests, &done, MPI_STATUSES_IGNORE);
-    if (done) return;
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(100));
-  }
-}
-
-}  // namespace detail
 
 using detail::wait_passively;
 
@@ -178,90 +146,15 @@ void CartComm::exchange_ghosts(double* const* vars, int nvars, const PaddedBox& 
   halo_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double CartComm::max(double local) const {
-  if (!comm_) return local;
-  double out = local;
-  MPI_Request r;
-  MPI_Iallreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, as_comm(comm_), &r);
-  wait_passively(1, &r);
-  return out;
-}
+double CartComm::max(double local) const { return comm_ ? detail::max_over(comm_, local) : local; }
 
 double CartComm::min(double local) const { return -max(-local); }
 
 void CartComm::sum(std::span<double> values) const {
-  if (!comm_ || values.empty()) return;
-  std::vector<double> in(values.begin(), values.end());
-  MPI_Request r;
-  MPI_Iallreduce(in.data(), values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, as_comm(comm_), &r);
-  wait_passively(1, &r);
+  if (comm_) detail::sum_over(comm_, values);
 }
 
 bool CartComm::any(bool local) const { return max(local ? 1.0 : 0.0) > 0.0; }
-
-std::vector<double> CartComm::gather_cells(std::span<const double> local, int ncomp) const {
-  if (!comm_) return {local.begin(), local.end()};
-  const int ranks = size();
-  std::vector<int> counts(ranks), displs(ranks);
-  for (int r = 0, at = 0; r < ranks; ++r) {
-    counts[r] = static_cast<int>(block_of(layout_, r, cells_).cells() * ncomp);
-    displs[r] = at;
-    at += counts[r];
-  }
-  if (static_cast<long>(local.size()) != counts[rank_])
-    throw std::invalid_argument(fmt::format("rank {}: {} values to gather for a block of {}", rank_, local.size(),
-                                            counts[rank_]));
-  std::vector<double> packed(rank_ == 0 ? static_cast<std::size_t>(displs.back() + counts.back()) : 0);
-  MPI_Request req;
-  MPI_Igatherv(local.data(), counts[rank_], MPI_DOUBLE, packed.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
-               as_comm(comm_), &req);
-  wait_passively(1, &req);
-  if (rank_ != 0) return {};
-  std::vector<double> global(packed.size());
-  for (int r = 0; r < ranks; ++r) {  // each block's rows into the mesh's
-    const Block b = block_of(layout_, r, cells_);
-    const double* in = packed.data() + displs[r];
-    const std::size_t len = static_cast<std::size_t>(b.upper[0] - b.lower[0]) * ncomp;
-    for (int k = b.lower[2]; k < b.upper[2]; ++k)
-      for (int j = b.lower[1]; j < b.upper[1]; ++j, in += len) {
-        const std::size_t at = ((static_cast<std::size_t>(k) * cells_[1] + j) * cells_[0] + b.lower[0]) * ncomp;
-        std::copy(in, in + len, global.begin() + static_cast<std::ptrdiff_t>(at));
-      }
-  }
-  return global;
-}
-
-std::vector<double> CartComm::scatter_cells(std::span<const double> global, int ncomp) const {
-  if (!comm_) return {global.begin(), global.end()};
-  const int ranks = size();
-  std::vector<int> counts(ranks), displs(ranks);
-  std::vector<double> packed;
-  for (int r = 0, at = 0; r < ranks; ++r) {
-    counts[r] = static_cast<int>(block_of(layout_, r, cells_).cells() * ncomp);
-    displs[r] = at;
-    at += counts[r];
-  }
-  if (rank_ == 0) {
-    packed.resize(global.size());
-    double* out = packed.data();
-    for (int r = 0; r < ranks; ++r) {
-      const Block b = block_of(layout_, r, cells_);
-      const std::size_t len = static_cast<std::size_t>(b.upper[0] - b.lower[0]) * ncomp;
-      for (int k = b.lower[2]; k < b.upper[2]; ++k)
-        for (int j = b.lower[1]; j < b.upper[1]; ++j, out += len) {
-          const std::size_t at = ((static_cast<std::size_t>(k) * cells_[1] + j) * cells_[0] + b.lower[0]) * ncomp;
-          std::copy(global.begin() + static_cast<std::ptrdiff_t>(at),
-                    global.begin() + static_cast<std::ptrdiff_t>(at + len), out);
-        }
-    }
-  }
-  std::vector<double> local(static_cast<std::size_t>(counts[rank_]));
-  MPI_Request req;
-  MPI_Iscatterv(packed.data(), counts.data(), displs.data(), MPI_DOUBLE, local.data(), counts[rank_], MPI_DOUBLE, 0,
-                as_comm(comm_), &req);
-  wait_passively(1, &req);
-  return local;
-}
 
 SparsePlan CartComm::plan_sparse(std::span<const int> owner, std::span<const long> index) const {
   SparsePlan plan;
@@ -367,10 +260,7 @@ std::string CartComm::broadcast(const std::string& from_root) const {
 }
 
 void CartComm::barrier() const {
-  if (!comm_) return;
-  MPI_Request r;
-  MPI_Ibarrier(as_comm(comm_), &r);
-  wait_passively(1, &r);
+  if (comm_) detail::barrier_over(comm_);
 }
 
 namespace {

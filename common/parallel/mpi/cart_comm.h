@@ -100,10 +100,6 @@ class CartComm {
   void sum(std::span<double> values) const;  // in place, every rank gets the sums (rank order of the reduction)
   bool any(bool local) const;
 
-  // The blocks' interior cells (ncomp values per cell, i fastest) as one global array of the mesh on rank 0 (empty
-  // elsewhere), and the reverse: rank 0's global array cut into each rank's block.
-  std::vector<double> gather_cells(std::span<const double> local, int ncomp) const;
-  std::vector<double> scatter_cells(std::span<const double> global, int ncomp) const;
   // Sets up a sparse exchange: this rank needs the cells index[i] of rank owner[i] (each another rank). Collective
   // (every rank calls it, with or without requests). The plan's send_index tells which of its cells this rank must
   // pack, in order, for exchange_sparse.

@@ -98,32 +98,18 @@ void GraphComm::gather_owned(std::span<double> values, int ncomp, std::span<cons
   }
 }
 
-double GraphComm::max(double local) const {
-  if (!comm_) return local;
-  double out = local;
-  MPI_Request r;
-  MPI_Iallreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, as_comm(comm_), &r);
-  wait_passively(1, &r);
-  return out;
-}
+double GraphComm::max(double local) const { return comm_ ? detail::max_over(comm_, local) : local; }
 
 double GraphComm::min(double local) const { return -max(-local); }
 
 void GraphComm::sum(std::span<double> values) const {
-  if (!comm_ || values.empty()) return;
-  std::vector<double> in(values.begin(), values.end());
-  MPI_Request r;
-  MPI_Iallreduce(in.data(), values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, as_comm(comm_), &r);
-  wait_passively(1, &r);
+  if (comm_) detail::sum_over(comm_, values);
 }
 
 bool GraphComm::any(bool local) const { return max(local ? 1.0 : 0.0) > 0.0; }
 
 void GraphComm::barrier() const {
-  if (!comm_) return;
-  MPI_Request r;
-  MPI_Ibarrier(as_comm(comm_), &r);
-  wait_passively(1, &r);
+  if (comm_) detail::barrier_over(comm_);
 }
 
 }  // namespace cosim::parallel
