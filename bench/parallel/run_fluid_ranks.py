@@ -12,7 +12,7 @@ Then a model of the tungsten scene at 1000^3 on 1 to 4096 ranks: computation per
 rate of the 3D air/tungsten scene, the halo from the bytes the solver sends per step (two ghost layers of every
 primitive per face, two Runge-Kutta stages) over a stated network, one reduction per step.
 
-Usage: /usr/bin/python3 bench/parallel/run_fluid_ranks.py [--quick] [--repeats N]
+Usage: /usr/bin/python3 bench/parallel/run_fluid_ranks.py [--quick] [--repeats N] [--only ranks|waits|halo|snapshots]
 """
 import argparse
 import json
@@ -78,25 +78,36 @@ def measure(quick, repeats):
     return results
 
 
+WAITS = ("passive", "sleep", "spin")  # COSIM_MPI_WAIT: yield then sleep (default), sleep at once, spin
+
+
 def oversubscription(quick, repeats):
-    """2 and 4 ranks of one thread on the 2D air/tungsten scene, the waits passive (default) or spinning."""
+    """2 and 4 ranks of one thread, blocks of 500^2 (2D air/tungsten 1000^2) and 250^2 (single phase): each way of
+    waiting (common/parallel/mpi/passive_wait.cpp)."""
     work = tempfile.mkdtemp(prefix="fluid_ranks_")
+    cases = [("2D air/tungsten 1000^2", "bench/fluid/two_phase_2d.yaml", {2: [1000, 1000], 4: [1000, 1000]},
+              5 if quick else 20),
+             ("2D single phase, 250^2 per rank", "bench/fluid/riemann_2d.yaml", {2: [250, 500], 4: [500, 500]},
+              20 if quick else 200)]
     best = {}
     try:
         for _ in range(repeats):
-            for ranks in (2, 4):
-                for wait in ("passive", "spin"):
-                    r = run("bench/fluid/two_phase_2d.yaml", [1000, 1000], 5 if quick else 20, ranks, 1, work,
-                            {"COSIM_MPI_WAIT": wait})
-                    if (ranks, wait) not in best or r["rate"] > best[(ranks, wait)]["rate"]:
-                        best[(ranks, wait)] = r
+            for name, scene, meshes, steps in cases:
+                for ranks in (2, 4):
+                    for wait in WAITS:
+                        r = run(scene, meshes[ranks], steps, ranks, 1, work, {"COSIM_MPI_WAIT": wait})
+                        key = (name, ranks, wait)
+                        if key not in best or r["rate"] > best[key]["rate"]:
+                            best[key] = r
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    print("\n| 2D air/tungsten 1000^2, %d cores | waits passive [Mcell/s] | waits spinning |" % os.cpu_count())
-    print("|---|---|---|")
-    for ranks in (2, 4):
-        print("| %d ranks x 1 thread | %.2f | %.2f |" % (ranks, best[(ranks, "passive")]["rate"] / 1e6,
-                                                       best[(ranks, "spin")]["rate"] / 1e6))
+    print("\n| %d cores | ranks x 1 thread | yield, then sleep (default) [Mcell/s] | sleep at once | spin |"
+          % os.cpu_count())
+    print("|---|---|---|---|---|")
+    for name, _, _, _ in cases:
+        for ranks in (2, 4):
+            print("| %s | %d | %s |" % (name, ranks, " | ".join("%.2f" % (best[(name, ranks, w)]["rate"] / 1e6)
+                                                               for w in WAITS)))
 
 
 def halo_sweep(quick, repeats):
@@ -108,7 +119,7 @@ def halo_sweep(quick, repeats):
                                   (3, (32, 64), "bench/fluid/blast_3d.yaml")):
             for n in sizes:
                 mesh = [n] * (dim - 1) + [2 * n]  # split across the slowest axis: two n^dim blocks
-                steps = 5 if quick else 20
+                steps = (20 if quick else 200) if dim == 2 else (5 if quick else 20)
                 best = None
                 for _ in range(repeats):
                     r = run(scene, mesh, steps, 2, 1, work)
@@ -243,15 +254,23 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer steps")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--only", choices=("ranks", "waits", "halo", "snapshots"), action="append",
+                    help="only these parts (repeatable): ranks against threads with the model, the ways of waiting, "
+                         "the halo sweep, the snapshot rate")
     a = ap.parse_args()
+    parts = set(a.only or ("ranks", "waits", "halo", "snapshots"))
     os.makedirs(OUT, exist_ok=True)
-    results = measure(a.quick, a.repeats)
-    print_table(results)
-    plot(results)
-    scaling_model(results)
-    oversubscription(a.quick, a.repeats)
-    halo_sweep(a.quick, a.repeats)
-    snapshot_rate(a.repeats)
+    if "ranks" in parts:
+        results = measure(a.quick, a.repeats)
+        print_table(results)
+        plot(results)
+        scaling_model(results)
+    if "waits" in parts:
+        oversubscription(a.quick, a.repeats)
+    if "halo" in parts:
+        halo_sweep(a.quick, a.repeats)
+    if "snapshots" in parts:
+        snapshot_rate(a.repeats)
 
 
 if __name__ == "__main__":

@@ -68,8 +68,9 @@ struct SolverLoopResult {
 // cycle(const Directive&) runs one coupled cycle (Advance); output(const Directive&) writes snapshot
 // d.output_index; checkpoint(const Directive&) writes this solver's part into d.directory and returns its file
 // name there (the loop confirms it to the coupler). Solver time and the coupler's t^n are compared at every cycle.
-template <class Solver, class Cycle, class Output, class Checkpoint>
-SolverLoopResult run_solver_loop(Client& client, const Solver& sim, Cycle&& cycle, Output&& output,
+// `client`: a Client, or a RankRelay for a solver on several ranks (every rank runs the loop).
+template <class Link, class Solver, class Cycle, class Output, class Checkpoint>
+SolverLoopResult run_solver_loop(Link& client, const Solver& sim, Cycle&& cycle, Output&& output,
                                  Checkpoint&& checkpoint) {
   SolverLoopResult r;
   const auto t0 = std::chrono::steady_clock::now();

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "fluid_solver/core/layout.h"
@@ -32,6 +33,8 @@ class BlockLinks {
   virtual void exchange_far(int channel, const double* send, double* recv, int width) = 0;
   // Whether `local` is true on any block (a failure agreed on before an exchange).
   virtual bool any(bool local) = 0;
+  // Every block's `mine`, on every block, in rank order.
+  virtual std::vector<std::string> texts_of_blocks(const std::string& mine) = 0;
 };
 
 }  // namespace cosim::fluid

@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "fluid_solver/core/block_geometry.h"
 #include "fluid_solver/core/block_links.h"
 #include "fluid_solver/core/embedded_block.h"
 #include "fluid_solver/core/grid.h"
@@ -144,7 +145,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   EmbeddedBodiesRun(std::unique_ptr<FluidSimulation> inner, const FluidScene& s)
       : inner_(std::move(inner)),
         block_(s.cells, s.lower, s.upper, s.block.first, s.block.whole() ? s.cells : s.block.count),
-        g_(block_.whole() ? block_ : margin_grid(block_)),
+        g_(block_),
         surface_(embedded::surface_of(s.embedded, DIM)),
         second_order_(s.embedded.second_order),
         ghost_wall_pressure_(s.embedded.ghost_pressure_from_interface),
@@ -154,7 +155,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
     if (block_.whole()) update();
-    else want_block_records(g_, block_, opt_.image);
+    else on_block_ = std::make_unique<BlockGeometry<DIM>>(block_, opt_);
   }
 
   const FluidScene& scene() const override { return inner_->scene(); }
@@ -186,7 +187,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   }
   void set_block_links(BlockLinks* links) override {
     inner_->set_block_links(links);
-    links_ = links;
+    if (on_block_) on_block_->set_links(links);
   }
   void start_on_blocks() override {
     if (!block_.whole()) update();
@@ -228,7 +229,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
   double geometry_seconds() const { return geometry_seconds_; }
   std::string interface_segments_csv() const override {
-    return block_.whole() ? segments_csv(geo_) : segments_csv(geo_, &g_, &block_);
+    return on_block_ ? segments_csv(on_block_->geometry(), &on_block_->grid(), &block_) : segments_csv(geo_);
   }
 
  private:
@@ -253,139 +254,33 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  // The same on a block: the geometry over the margin grid, the wall pressure samples with the cells of other blocks
-  // they read, the records restricted to the block with its far cells. The blocks agree on a failure before each
-  // exchange (no block waits in one for a block that failed).
+  // The same on a block: the geometry over the margin grid, the wall pressure samples of the faces the block's records
+  // name, with the cells of other blocks they read, the records restricted to the block with its far cells.
   void update_block() {
-    const auto agree = [&](const std::string& error) {
-      if (links_->any(!error.empty()))
-        throw std::runtime_error(error.empty() ? "another block could not build its embedded geometry" : error);
-    };
-    std::string error;
-    try {
-      embedded::build_geometry<DIM>(g_, surface_, opt_, geo_);
-      if (ghost_wall_pressure_) plan_samples();
-    } catch (const std::exception& e) { error = e.what(); }
-    agree(error);
-    if (ghost_wall_pressure_) exchange_samples();
-    std::vector<std::array<int, 3>> far;
-    EmbeddedState st;
-    try {
-      if (ghost_wall_pressure_) {
-        const coupling::FluidSamples smp = interface::sample_faces<DIM>(
-            block_, [&](const std::array<int, 3>& c) { return is_flow_cell(geo_.category[margin_index(c)]); },
-            [&](const std::array<int, 3>* c, int count, CellSample* out) { sample_states(c, count, out); },
-            inner_->scene(), faces_, &sampled_faces_);
-        wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
-      }
-      const EmbeddedState ext =
-          to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
-      st = restrict_to_block<DIM>(ext, g_, block_, far);
-    } catch (const std::exception& e) { error = e.what(); }
-    agree(error);
-    // The x rows take the blocked-face path wherever the whole mesh has a blocked face along x (solver_sweep.h):
-    // the same sums in the same order as on one rank, also on a block that has none.
-    st.blocked_x = links_->any(!st.blocked[0].empty());
-    links_->plan_far(0, far);
-    inner_->set_embedded(std::move(st), second_order_);
-  }
-
-  // The padded index in the margin grid of global cell c; a cell beyond it is an error (embedded/reach.h).
-  std::size_t margin_index(const std::array<int, 3>& c) const {
-    std::array<int, 3> l{0, 0, 0};
-    for (int d = 0; d < DIM; ++d) {
-      l[d] = c[d] - g_.first[d];
-      if (l[d] < -Grid<DIM>::NG || l[d] >= g_.n[d] + Grid<DIM>::NG)
-        throw embedded::ReachError(fmt::format(
-            "embedded geometry: a wall pressure sample reads cell {} along axis {}, beyond the cells [{}, {}) this "
-            "block's geometry holds (fluid_solver/embedded/reach.h)",
-            c[d], d, g_.first[d] - Grid<DIM>::NG, g_.first[d] + g_.n[d] + Grid<DIM>::NG));
+    if (ghost_wall_pressure_) faces_ = interface::faces_of_surface(surface_);
+    on_block_->cut(surface_, ghost_wall_pressure_ ? &faces_ : nullptr, [&](const embedded::EmbeddedGeometry<DIM>& geo) {
+      std::vector<char> named(static_cast<std::size_t>(faces_.count), 0);
+      for (const auto& ip : geo.image_points)
+        if (ip.face >= 0) named[static_cast<std::size_t>(ip.face)] = 1;
+      for (const auto& si : geo.side_images)
+        if (si.image.face >= 0) named[static_cast<std::size_t>(si.image.face)] = 1;
+      return named;
+    });
+    if (ghost_wall_pressure_) {
+      const coupling::FluidSamples smp = on_block_->samples(*inner_);
+      wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
     }
-    return g_.index(l[0], l[1], l[2]);
-  }
-  bool interior(const std::array<int, 3>& c) const {
-    for (int d = 0; d < DIM; ++d)
-      if (c[d] < block_.first[d] || c[d] >= block_.first[d] + block_.n[d]) return false;
-    return true;
-  }
-  static bool mesh_order(const std::array<int, 3>& a, const std::array<int, 3>& b) {
-    return a[2] != b[2] ? a[2] < b[2] : a[1] != b[1] ? a[1] < b[1] : a[0] < b[0];
-  }
-
-  // The faces the block's records name and every cell their samples may read beyond the block's cells.
-  void plan_samples() {
-    faces_ = interface::faces_of_surface(surface_);
-    sampled_faces_.assign(static_cast<std::size_t>(faces_.count), 0);
-    for (const auto& ip : geo_.image_points)
-      if (ip.face >= 0) sampled_faces_[static_cast<std::size_t>(ip.face)] = 1;
-    for (const auto& si : geo_.side_images)
-      if (si.image.face >= 0) sampled_faces_[static_cast<std::size_t>(si.image.face)] = 1;
-    sample_far_.clear();
-    std::array<std::array<int, 3>, 1 << DIM> cells{};
-    std::array<double, 1 << DIM> w{};
-    for (int f = 0; f < faces_.count; ++f)
-      if (sampled_faces_[static_cast<std::size_t>(f)])
-        interface::sample_points<DIM>(block_, faces_, f, interface::SampleOptions{},
-                                      [&](const std::array<double, 3>& x) {
-                                        interface::sample_stencil<DIM>(block_, x, cells, w);
-                                        for (const auto& c : cells)
-                                          if (!interior(c)) sample_far_.push_back(c);
-                                      });
-    std::sort(sample_far_.begin(), sample_far_.end(), mesh_order);
-    sample_far_.erase(std::unique(sample_far_.begin(), sample_far_.end()), sample_far_.end());
-  }
-
-  // The states of the sampled cells of other blocks (channel 1), and those of this block's cells they asked for.
-  void exchange_samples() {
-    const std::vector<std::size_t>& send = links_->plan_far(1, sample_far_);
-    const int np = inner_->scene().num_phases();
-    constexpr int kPerPhase = 8;  // CellSample: alpha, rho, p, c, velocity[3], granular
-    std::vector<CellSample> st(static_cast<std::size_t>(np));
-    std::vector<double> out(send.size() * kPerPhase * np);
-    for (std::size_t i = 0; i < send.size(); ++i) {
-      inner_->cell_states(&send[i], 1, st.data());
-      for (int k = 0; k < np; ++k) {
-        const CellSample& c = st[static_cast<std::size_t>(k)];
-        double* o = out.data() + (i * np + k) * kPerPhase;
-        o[0] = c.alpha, o[1] = c.rho, o[2] = c.p, o[3] = c.c;
-        o[4] = c.velocity[0], o[5] = c.velocity[1], o[6] = c.velocity[2], o[7] = c.granular;
-      }
-    }
-    sample_values_.resize(sample_far_.size() * kPerPhase * np);
-    links_->exchange_far(1, out.data(), sample_values_.data(), kPerPhase * np);
-  }
-
-  // States of global cells for the samples: the block's own, or those exchange_samples brought.
-  void sample_states(const std::array<int, 3>* c, int count, CellSample* out) const {
-    const int np = inner_->scene().num_phases();
-    for (int q = 0; q < count; ++q) {
-      CellSample* o = out + static_cast<std::ptrdiff_t>(q) * np;
-      if (interior(c[q])) {
-        const std::size_t idx =
-            block_.index(c[q][0] - block_.first[0], c[q][1] - block_.first[1], c[q][2] - block_.first[2]);
-        inner_->cell_states(&idx, 1, o);
-        continue;
-      }
-      const auto it = std::lower_bound(sample_far_.begin(), sample_far_.end(), c[q], mesh_order);
-      if (it == sample_far_.end() || *it != c[q])
-        throw std::logic_error("embedded geometry: a wall pressure sample reads a cell it did not ask for");
-      const double* v = sample_values_.data() + static_cast<std::size_t>(it - sample_far_.begin()) * 8 * np;
-      for (int k = 0; k < np; ++k, v += 8) {
-        o[k].alpha = v[0], o[k].rho = v[1], o[k].p = v[2], o[k].c = v[3];
-        o[k].velocity = {v[4], v[5], v[6]};
-        o[k].granular = v[7];
-      }
-    }
+    inner_->set_embedded(on_block_->state([&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
+      return to_embedded_state<DIM>(g, surface_, geo, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+    }),
+                         second_order_);
   }
 
   std::unique_ptr<FluidSimulation> inner_;
-  Grid<DIM> block_;  // the solver's cells (the whole mesh on one rank)
-  Grid<DIM> g_;      // the geometry's: the whole mesh, or the block and its margin (margin_grid)
-  BlockLinks* links_ = nullptr;
-  coupling::Faces faces_;                       // a block's: the surface's faces, those it samples
-  std::vector<char> sampled_faces_;             // and which of them its records name
-  std::vector<std::array<int, 3>> sample_far_;  // cells of other blocks their samples read (mesh order)
-  std::vector<double> sample_values_;           // and their states (8 values per phase)
+  Grid<DIM> block_;                               // the solver's cells (the whole mesh on one rank)
+  Grid<DIM> g_;                                   // the geometry's on the whole mesh
+  std::unique_ptr<BlockGeometry<DIM>> on_block_;  // on a block of a split mesh: the geometry there
+  coupling::Faces faces_;                         // a block's: the surface's faces
   embedded::Surface surface_;
   embedded::GeometryOptions opt_;
   embedded::EmbeddedGeometry<DIM> geo_;

@@ -37,6 +37,7 @@ class CartBlockLinks final : public BlockLinks {
   }
   void exchange_far(int channel, const double* send, double* recv, int width) override;
   bool any(bool local) override { return comm_.any(local); }
+  std::vector<std::string> texts_of_blocks(const std::string& mine) override { return comm_.gather_text(mine, true); }
 
  private:
   parallel::CartComm& comm_;

@@ -229,19 +229,24 @@ void CartComm::exchange_sparse(const SparsePlan& plan, const double* send, doubl
   halo_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<std::string> CartComm::gather_text(const std::string& local) const {
+std::vector<std::string> CartComm::gather_text(const std::string& local, bool to_all) const {
   if (!comm_) return {local};
   const int ranks = size();
   int n = static_cast<int>(local.size());
   std::vector<int> counts(static_cast<std::size_t>(ranks)), displs(static_cast<std::size_t>(ranks), 0);
   MPI_Request r;
-  MPI_Igather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, as_comm(comm_), &r);
+  if (to_all) MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, as_comm(comm_), &r);
+  else MPI_Igather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, as_comm(comm_), &r);
   wait_passively(1, &r);
+  const bool receives = to_all || rank_ == 0;
   for (int q = 1; q < ranks; ++q) displs[q] = displs[q - 1] + counts[q - 1];
-  std::string all(rank_ == 0 ? static_cast<std::size_t>(displs[ranks - 1] + counts[ranks - 1]) : 0, '\0');
-  MPI_Igatherv(local.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR, 0, as_comm(comm_), &r);
+  std::string all(receives ? static_cast<std::size_t>(displs[ranks - 1] + counts[ranks - 1]) : 0, '\0');
+  if (to_all)
+    MPI_Iallgatherv(local.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR, as_comm(comm_), &r);
+  else
+    MPI_Igatherv(local.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR, 0, as_comm(comm_), &r);
   wait_passively(1, &r);
-  if (rank_ != 0) return {};
+  if (!receives) return {};
   std::vector<std::string> out;
   for (int q = 0; q < ranks; ++q) out.push_back(all.substr(static_cast<std::size_t>(displs[q]), counts[q]));
   return out;

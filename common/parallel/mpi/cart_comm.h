@@ -109,8 +109,8 @@ class CartComm {
   // count into sparse_bytes().
   void exchange_sparse(const SparsePlan& plan, const double* send, double* recv, int width);
   double sparse_bytes() const { return sparse_bytes_; }
-  // Every rank's text on rank 0, in rank order (empty elsewhere).
-  std::vector<std::string> gather_text(const std::string& local) const;
+  // Every rank's text on rank 0 (to_all: on every rank), in rank order (empty elsewhere).
+  std::vector<std::string> gather_text(const std::string& local, bool to_all = false) const;
   // Rank 0's bytes to every rank.
   std::string broadcast(const std::string& from_root) const;
   void barrier() const;
