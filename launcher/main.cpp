@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   run->add_option("--solid-exe", o.solid_cmd, "solid command (default: solid_solver next to cosim)");
   run->add_option("--coupler-exe", o.coupler_cmd, "coupler command (default: coupler next to cosim)");
   run->add_option("--fluid-ranks", o.fluid_ranks,
-                  "MPI ranks of the fluid (a fluid-only scene; default: the scene's launcher.fluid_ranks, else 1)")
+                  "MPI ranks of the fluid (default: the scene's launcher.fluid_ranks, else 1)")
       ->check(CLI::PositiveNumber);
   run->add_option("--solid-ranks", o.solid_ranks,
                   "MPI ranks of the solid (a solid-only scene; default: the scene's launcher.solid_ranks, else 1)")

@@ -67,11 +67,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
     return std::nullopt;
   }
   if (eff.fluid_ranks == 0) eff.fluid_ranks = 1;
-  if (eff.fluid_ranks > 1 && plan.kind != RunKind::FluidOnly) {
-    std::cerr << fmt::format(
-        "cosim: {} fluid ranks: a {} run has one fluid rank for now (the coupler serves one fluid process); "
-        "a fluid-only scene runs on several\n",
-        eff.fluid_ranks, kind_name(plan.kind));
+  if (eff.fluid_ranks > 1 && !plan.has_fluid()) {
+    std::cerr << fmt::format("cosim: {} fluid ranks: a {} run has no fluid\n", eff.fluid_ranks, kind_name(plan.kind));
     return std::nullopt;
   }
   if (eff.solid_ranks == 0) eff.solid_ranks = 1;

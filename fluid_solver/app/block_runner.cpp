@@ -15,6 +15,7 @@
 #include "common/config/config.h"
 #include "common/io/atomic_file.h"
 #include "common/parallel/mpi/rank_watchdog.h"
+#include "fluid_solver/app/block_setup.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/app/runner.h"
 #include "fluid_solver/io/fluid_output.h"
@@ -23,85 +24,22 @@
 
 namespace cosim::fluid {
 
-namespace {
-
-// Threads per rank when neither the scene nor --threads chose: the cores this rank may use shared by the ranks on
-// its node, and no more than its rows of cells keep busy (app::threads_for).
-int threads_per_rank(const FluidScene& scene, const parallel::MpiSession& mpi) {
-  if (scene.threads > 0) return scene.threads;
-  const int cores = std::max(1, omp_get_num_procs() / std::max(1, mpi.ranks_on_this_node()));
-  const long rows = static_cast<long>(scene.block.count[1]) * scene.block.count[2];
-  return std::max(1, std::min(cores, app::threads_for(rows, 16)));
-}
-
-// halo: the bytes every rank sent and the most seconds a rank spent in the exchanges, waiting included, and of it
-// waiting for the neighbours' messages (their latency and the ranks' imbalance).
-nlohmann::json parallel_record(const parallel::CartComm& comm, const FluidScene& scene, double halo_bytes,
-                               double halo_seconds, double halo_wait_seconds) {
-  const auto& b = comm.layout().blocks;
-  return {{"ranks", comm.size()},
-          {"layout", std::vector<int>(b.begin(), b.begin() + scene.dim)},
-          {"threads_per_rank", omp_get_max_threads()},
-          {"halo_bytes", halo_bytes},
-          {"halo_seconds", halo_seconds},
-          {"halo_wait_seconds", halo_wait_seconds}};
-}
-
-}  // namespace
-
 int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   const bool root = mpi.rank() == 0;
-  // One voice for what every rank finds alike (the scene, the set-up); afterwards a rank's own warnings and errors.
-  if (!root) spdlog::set_level(spdlog::level::off);
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
-
-  std::unique_ptr<parallel::CartComm> comm;
-  std::unique_ptr<CartBlockLinks> links;
-  std::unique_ptr<FluidSimulation> sim;
-  try {  // the layout: every rank finds the same
-    const parallel::Layout layout = fluid_layout(scene, mpi.size());
-    comm = std::make_unique<parallel::CartComm>(mpi, layout, periodic_axes(scene), scene.cells);
-  } catch (const std::exception& e) {
-    spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
-    return 2;
-  }
-  std::string setup_error;  // this rank's block (its memory, ...): the ranks agree before any exchange
-  try {
-    assign_block(scene, *comm);
-    scene.threads = threads_per_rank(scene, mpi);
-    sim = make_simulation(scene);
-    links = std::make_unique<CartBlockLinks>(*comm, scene);
-    sim->set_block_links(links.get());
-  } catch (const std::exception& e) { setup_error = e.what(); }
-  if (!root) spdlog::set_level(spdlog::level::err);
-  if (!setup_error.empty())
-    spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
-                  opt.scene_name(), setup_error);
-  if (comm->any(!setup_error.empty())) return 2;
-  try {  // the embedded bodies' geometry needs the other blocks (they agree on a failure: every rank ends with 2)
-    sim->start_on_blocks();
-  } catch (const std::exception& e) {
-    spdlog::error("{}{}: cannot set up the fluid solver: {}", mpi.describe().empty() ? "" : mpi.describe() + ": ",
-                  opt.scene_name(), e.what());
-    return 2;
-  }
-  if (root && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
-    if (comm->size() == 1) return 4;
-    parallel::MpiSession::abort_all(4);
-  }
-  if (root) {  // an earlier run's: a failing rank's summary is then the only one (fail_alone)
-    std::error_code ec;
-    std::filesystem::remove(opt.out_dir / "summary.json", ec);
-  }
-  comm->barrier();  // the folder exists, without an earlier summary, before any rank writes into it
+  FluidBlocks blocks;
+  if (const int code = set_up_blocks(opt, mpi, scene, blocks)) return code;
+  parallel::CartComm* comm = blocks.comm.get();
+  FluidSimulation* sim = blocks.sim.get();
+  if (const int code = prepare_output(opt, *comm)) return code;
   double cells = 1;
   for (int d = 0; d < scene.dim; ++d) cells *= scene.cells[d];
-  const auto& blocks = comm->layout().blocks;
+  const auto& layout = comm->layout().blocks;
   spdlog::info("{}: {}D, {:.0f} cells, {} phase(s), flux {}, {} rank(s) ({} blocks), {} thread(s) per rank", scene.name,
                scene.dim, cells, scene.num_phases(), to_string(scene.flux), comm->size(),
-               fmt::join(blocks.begin(), blocks.begin() + scene.dim, " x "), omp_get_max_threads());
+               fmt::join(layout.begin(), layout.begin() + scene.dim, " x "), omp_get_max_threads());
 
   // A rank that falls silent (stopped, hung) ends the run; the rank that notices says so in summary.json.
   const double silence = parallel::rank_silence_timeout();
@@ -114,22 +52,8 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.cells = cells;
   app::DriveOptions drive_opt{scene.output_times, scene.t_end,       scene.max_steps, 0.0, cells,
                               "Mcell-updates/s",  opt.quiet || !root};
-  // A failure on this rank alone: its summary and message, then every rank ends with its code.
   const auto fail_alone = [&](int code, const std::string& error) {
-    rec.status = code == 130 ? "interrupted" : "failed";
-    rec.error = fmt::format("{} (block of cells [{}, {}) x [{}, {}) x [{}, {}))", error, scene.block.first[0],
-                            scene.block.first[0] + scene.block.count[0], scene.block.first[1],
-                            scene.block.first[1] + scene.block.count[1], scene.block.first[2],
-                            scene.block.first[2] + scene.block.count[2]);
-    spdlog::error("{}: {}", mpi.describe(), rec.error);
-    if (app::keeps_another_ranks_summary(code, comm->size(), opt.out_dir)) parallel::MpiSession::abort_all(code);
-    rec.extra["parallel"] =
-        parallel_record(*comm, scene, comm->halo_bytes(), comm->halo_seconds(), comm->halo_wait_seconds());
-    rec.extra["parallel"]["failed_rank"] = comm->rank();
-    try {
-      write_summary(opt.out_dir, *sim, rec);  // this rank's totals only: the others cannot be asked
-    } catch (const std::exception& e) { spdlog::error("cannot write summary.json: {}", e.what()); }
-    parallel::MpiSession::abort_all(code);
+    fluid::fail_alone(opt, scene, *sim, *comm, rec, code, error);
   };
   if (!opt.restart.empty()) {
     try {
@@ -180,19 +104,7 @@ int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.error = res.error;
   rec.wall = res.wall;
   if (res.code != 0 && comm->size() > 1) fail_alone(res.code, res.error.empty() ? res.status : res.error);
-  rec.end_totals = totals_over_blocks(*sim, *comm);
-  rec.inflow = inflow_over_blocks(*sim, *comm);
-  if (sim->embedded().active && comm->size() > 1) {
-    rec.embedded_mass = embedded_mass_over_blocks(*sim, *comm);
-    rec.embedded_cells = embedded_cells_over_blocks(*sim, *comm);
-    rec.embedded_wall = wall_exchange_over_blocks(*sim, *comm);
-  }
-  rec.wall = comm->max(rec.wall);
-  std::vector<double> halo{comm->halo_bytes(), comm->sparse_bytes()};
-  comm->sum(halo);
-  const double halo_s = comm->max(comm->halo_seconds()), wait_s = comm->max(comm->halo_wait_seconds());
-  rec.extra["parallel"] = parallel_record(*comm, scene, halo[0], halo_s, wait_s);
-  if (!scene.embedded.bodies.empty()) rec.extra["parallel"]["embedded_exchange_bytes"] = halo[1];
+  record_over_blocks(rec, scene, *sim, *comm);
   rec.extra["output_seconds"] = comm->max(output_seconds);  // snapshots and checkpoints, within wall_time_s
   if (!root) return 0;
   try {

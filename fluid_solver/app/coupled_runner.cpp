@@ -5,18 +5,24 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include "common/app/rank_failure.h"
 #include "common/coupling/client.h"
+#include "common/coupling/rank_relay.h"
 #include "common/coupling/scene_hash.h"
 #include "common/coupling/solver_loop.h"
+#include "common/parallel/mpi/rank_watchdog.h"
+#include "fluid_solver/app/block_setup.h"
 #include "fluid_solver/app/fluid_checkpoint.h"
 #include "fluid_solver/app/run_summary.h"
 #include "fluid_solver/app/runner.h"
 #include "fluid_solver/coupled/coupled_boundary.h"
 #include "fluid_solver/io/fluid_output.h"
+#include "fluid_solver/parallel/block_io.h"
 
 namespace cosim::fluid {
 
-int run_fluid_coupled(const RunOptions& opt) {
+int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
+  const bool root = mpi.rank() == 0;
   auto loaded = app::load_scene<FluidScene>(opt, load_fluid_scene);
   if (!loaded) return 2;
   FluidScene scene = std::move(*loaded);
@@ -27,26 +33,41 @@ int run_fluid_coupled(const RunOptions& opt) {
         opt.scene_name());
     return 2;
   }
-  std::unique_ptr<FluidSimulation> sim;
+  // The mesh over the ranks (one block on one rank); each block cuts the interface over its cells and samples the
+  // faces centred in it; rank 0 talks to the coupler for all of them (RankRelay).
+  FluidBlocks blocks;
+  if (const int code = set_up_blocks(opt, mpi, scene, blocks)) return code;
+  parallel::CartComm& comm = *blocks.comm;
+  FluidSimulation* sim = blocks.sim.get();
   std::unique_ptr<coupled::CoupledBoundary> boundary;
   try {
-    sim = make_simulation(scene);
     boundary = coupled::make_coupled_boundary(*sim);
+    boundary->set_block_links(blocks.links.get());
   } catch (const std::exception& e) {
     spdlog::error("{}: cannot set up the fluid solver: {}", opt.scene_name(), e.what());
     return 2;
   }
-  if (!app::make_output_directory(opt.out_dir)) return 4;  // only for a run that can start: no empty folders
+  if (const int code = prepare_output(opt, comm)) return code;
+  std::unique_ptr<parallel::RankWatchdog> watchdog;  // a rank that falls silent ends the run (summary.json says so)
+  if (comm.size() > 1)
+    watchdog = std::make_unique<parallel::RankWatchdog>(
+        parallel::rank_silence_timeout(), [&, name = scene.name](const std::string& message, int silent, int code) {
+          app::write_silent_rank_summary(opt.out_dir, name, message, mpi.size(), silent, mpi.rank(), code);
+        });
   app::install_interrupt_handlers();
 
-  io::SnapshotSeries series(opt.out_dir, "fluid");
+  io::SnapshotSeries series(opt.out_dir, "fluid");  // every rank's (rank 0 publishes the files)
   RunRecord rec;
+  for (int d = 0; d < scene.dim; ++d) rec.cells = (d == 0 ? 1.0 : rec.cells) * scene.cells[d];
+  const auto fail_alone = [&](int code, const std::string& error) {
+    fluid::fail_alone(opt, scene, *sim, comm, rec, code, error);
+  };
   double solver_seconds = 0;
   bool first = true;
   FluidRunState restored;
   if (!opt.restart.empty()) {
     try {
-      restored = read_fluid_part(opt.restart, *sim, series, boundary.get());
+      restored = read_fluid_part_over_blocks(opt.restart, *sim, series, comm, boundary.get());
     } catch (const std::exception& e) {
       spdlog::error("--restart {}: {}", opt.restart.string(), e.what());
       return 2;
@@ -62,12 +83,18 @@ int run_fluid_coupled(const RunOptions& opt) {
     phases.names.push_back(ph.name);
     phases.min_pressure.push_back(-ph.eos.pinf);  // a stiffened gas admits p + pinf > 0
   }
-  std::unique_ptr<coupling::Client> client = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver",
-                                                                      std::move(phases), restored.cycle, restored.time);
-  if (!client) return 5;
+  std::unique_ptr<coupling::Client> connection;
+  if (root)
+    connection = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phases), restored.cycle,
+                                          restored.time);
+  coupling::RankRelay::Share share;
+  if (comm.size() > 1) share = [&](const std::string& text) { return comm.broadcast(text); };
+  auto link = std::make_unique<coupling::RankRelay>(std::move(connection), share);
+  if (!link->connected()) return 5;
+  coupling::RankRelay* client = link.get();
   boundary->sample_wall_velocity(client->mode() == coupling::Mode::Robin);
-  spdlog::info("{}: {}D, {} cells, {} phase(s), coupled through {} ({} conditions)", scene.name, scene.dim,
-               sim->interior_cells(), scene.num_phases(), opt.coupler, coupling::mode_name(client->mode()));
+  spdlog::info("{}: {}D, {:.0f} cells, {} phase(s), {} rank(s), coupled through {} ({} conditions)", scene.name,
+               scene.dim, rec.cells, scene.num_phases(), comm.size(), opt.coupler, coupling::mode_name(client->mode()));
 
   // Pipelined cycle: the proposal for the next step comes from t^n, right after the samples, so the coupler
   // can start the solid's next step while this one advances; the step taken may then exceed this state's
@@ -116,7 +143,7 @@ int run_fluid_coupled(const RunOptions& opt) {
     if (pipelined) client->propose_dt(stable_now);
     boundary->apply_states(client->receive_states());
     if (first) {  // the flow domain is known from the first geometry on
-      rec.start_totals = totals_json(scene, sim->totals());
+      rec.start_totals = totals_json(scene, totals_over_blocks(*sim, comm));
       first = false;
     }
     if (pipelined && d.dt > 0) note_lag(d, stable_now);
@@ -127,20 +154,23 @@ int run_fluid_coupled(const RunOptions& opt) {
     if (!pipelined) client->propose_dt(next);
   };
   const auto output = [&](const coupling::Directive&) {
-    app::as_io("writing a snapshot", [&] { write_snapshot(series, *sim, boundary->segments_csv()); });
+    const std::string segments = boundary->segments_csv();  // this block's rows
+    app::as_io("writing a snapshot", [&] { write_snapshot_over_blocks(series, *sim, comm, &segments); });
   };
   const auto checkpoint = [&](const coupling::Directive& d) {
     FluidRunState st{d.cycle,
                      d.time,
                      rec.start_totals,
                      {{"flow_solver_seconds", solver_seconds}, {"max_step_over_stable", max_step_over_stable}}};
-    return app::as_io("writing the checkpoint part",
-                      [&] { return write_fluid_part(d.directory, *sim, series, st, boundary.get()); });
+    return app::as_io("writing the checkpoint part", [&] {
+      return write_fluid_part_over_blocks(d.directory, *sim, series, st, comm, boundary.get());
+    });
   };
   const coupling::SolverLoopResult res = coupling::run_solver_loop(*client, *sim, cycle, output, checkpoint);
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
+  if (res.code != 0 && comm.size() > 1) fail_alone(res.code, res.error.empty() ? res.status : res.error);
   rec.extra["coupling"] = {{"endpoint", opt.coupler},
                            {"cycles", res.cycles},
                            {"snapshots", res.snapshots},
@@ -150,7 +180,9 @@ int run_fluid_coupled(const RunOptions& opt) {
                            {"geometry_seconds", boundary->geometry_seconds()},
                            {"scheme", coupling::scheme_name(client->scheme())},
                            {"max_step_over_stable", max_step_over_stable}};
-  if (first) rec.start_totals = totals_json(scene, sim->totals());
+  if (first) rec.start_totals = totals_json(scene, totals_over_blocks(*sim, comm));
+  record_over_blocks(rec, scene, *sim, comm);
+  if (!root) return 0;
   try {
     write_summary(opt.out_dir, *sim, rec);
   } catch (const std::exception& e) {

@@ -19,8 +19,8 @@ struct RunRecord {
   std::optional<std::vector<PhaseTotals>> end_totals, inflow;
   std::optional<std::vector<EmbeddedMassAccount>> embedded_mass;
   std::optional<std::vector<PhaseTotals>> embedded_wall;  // FluidSimulation::embedded_wall_exchange
-  std::optional<double> embedded_cells;  // ghost and solid-cut cells
-  double cells = 0;                      // interior cells of the whole mesh; 0: the simulation's
+  std::optional<double> embedded_cells;                   // ghost and solid-cut cells
+  double cells = 0;                                       // interior cells of the whole mesh; 0: the simulation's
 };
 
 void write_summary(const std::filesystem::path& dir, const FluidSimulation& sim, const RunRecord& rec);

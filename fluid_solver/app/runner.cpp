@@ -171,7 +171,7 @@ int run_fluid(const RunOptions& opt, const parallel::MpiSession& mpi) {
     if (opt.plan_facts) app::print_plan_facts(facts);
     return 0;
   }
-  if (opt.coupled()) return run_fluid_coupled(opt);
+  if (opt.coupled()) return run_fluid_coupled(opt, mpi);
   return run_fluid_blocks(opt, mpi);
 }
 

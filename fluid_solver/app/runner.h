@@ -14,7 +14,7 @@ using app::RunOptions;
 // coupling failure (coupler lost, refused, protocol error).
 // Under a parallel launcher (mpirun, srun) the standalone run splits the mesh over the ranks (run_fluid_blocks).
 int run_fluid(const RunOptions& opt, const parallel::MpiSession& mpi);
-int run_fluid_coupled(const RunOptions& opt);
+int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi);
 int run_fluid_blocks(const RunOptions& opt, const parallel::MpiSession& mpi);
 
 }  // namespace cosim::fluid

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/coupling/wire.h"
+#include "fluid_solver/core/block_geometry.h"
 #include "fluid_solver/core/embedded_bodies.h"
 #include "fluid_solver/embedded/geometry.h"
 #include "fluid_solver/interface/interface_samples.h"
@@ -29,15 +30,25 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
         g_(sim.scene().cells, sim.scene().lower, sim.scene().upper),
         second_order_(sim.scene().embedded.second_order),
         ghost_wall_pressure_(sim.scene().embedded.ghost_pressure_from_interface) {
-    opt_.band_cells = sim.scene().embedded.band;
-    opt_.periodic = periodic_directions(sim.scene());
+    const FluidScene& s = sim.scene();
+    opt_.band_cells = s.embedded.band;
+    opt_.periodic = periodic_directions(s);
+    if (!s.block.whole())
+      on_block_ = std::make_unique<BlockGeometry<DIM>>(
+          Grid<DIM>(s.cells, s.lower, s.upper, s.block.first, s.block.count), opt_);
+  }
+
+  void set_block_links(BlockLinks* links) override {
+    if (on_block_) on_block_->set_links(links);
   }
 
   coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {
     build(faces, dt);
     interface::SampleOptions so;
     so.extrapolate_velocity = wall_velocity_;
-    samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces, so);
+    // On blocks: each face sampled by the block holding its centre, the samples merged on every block.
+    if (on_block_) samples_ = on_block_->merge_samples(on_block_->samples(sim_, so), owned_);
+    else samples_ = sample_interface<DIM>(g_, geo_.category, sim_, faces, so);
     return samples_;
   }
 
@@ -73,7 +84,12 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     dt_ = dt;
     const auto t0 = std::chrono::steady_clock::now();
     surface_ = surface_from_faces(faces, DIM, dt);
-    embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
+    if (on_block_) {
+      owned_ = on_block_->faces_centred_here(faces);
+      on_block_->cut(surface_.surface, &faces, [&](const embedded::EmbeddedGeometry<DIM>&) { return owned_; });
+    } else {
+      embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
+    }
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -111,22 +127,36 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       surface_pressure_[2 * sf] = face_pressure[2 * f];
       surface_pressure_[2 * sf + 1] = face_pressure[2 * f + 1];
     }
-    EmbeddedState es = to_embedded_state<DIM>(g_, surface_.surface, geo_, &surface_speed_,
-                                              ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
+    const auto records = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
+      return to_embedded_state<DIM>(g, surface_.surface, geo, &surface_speed_,
+                                    ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
+    };
+    if (on_block_) return sim_.set_embedded(on_block_->state(records), second_order_);
+    EmbeddedState es = records(g_, geo_);
     if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g_, geo_, es);
     sim_.set_embedded(std::move(es), second_order_);
   }
 
-  std::string segments_csv() const override { return fluid::segments_csv<DIM>(geo_); }
+  std::string segments_csv() const override {
+    if (!on_block_) return fluid::segments_csv<DIM>(geo_);
+    const Grid<DIM> block = block_grid();
+    return fluid::segments_csv<DIM>(on_block_->geometry(), &on_block_->grid(), &block);
+  }
   double geometry_seconds() const override { return geometry_seconds_; }
 
  private:
+  Grid<DIM> block_grid() const {
+    const FluidScene& s = sim_.scene();
+    return Grid<DIM>(s.cells, s.lower, s.upper, s.block.first, s.block.count);
+  }
   FluidSimulation& sim_;
   Grid<DIM> g_;
   bool second_order_;
   bool ghost_wall_pressure_;
   embedded::GeometryOptions opt_;
-  embedded::EmbeddedGeometry<DIM> geo_;
+  embedded::EmbeddedGeometry<DIM> geo_;           // on the whole mesh
+  std::unique_ptr<BlockGeometry<DIM>> on_block_;  // on a block of a split mesh: the geometry there
+  std::vector<char> owned_;                       // and the faces centred in the block (those it samples)
   InterfaceSurface surface_;
   coupling::FluidSamples samples_;
   coupling::Faces faces_;  // of this cycle, with its step and states: what a checkpoint keeps

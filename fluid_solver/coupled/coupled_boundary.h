@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/coupling/types.h"
+#include "fluid_solver/core/block_links.h"
 #include "fluid_solver/core/simulation.h"
 
 namespace cosim::fluid::coupled {
@@ -28,6 +29,9 @@ class CoupledBoundary {
   virtual void save(checkpoint::PartWriter& w) const = 0;
   virtual void restore(const checkpoint::PartReader& r) = 0;
   virtual double geometry_seconds() const = 0;  // total spent in the geometry [s]
+  // On a block of a split mesh: the other blocks (every block then makes every call above together; the samples
+  // returned are the whole interface's, each face sampled by the block holding its centre).
+  virtual void set_block_links(BlockLinks* links) = 0;
   // The samples' normal velocity extrapolated to the wall like the pressure (coupling.mode robin, whose
   // solid weighs u_f - u_s by the fluid's impedance; interface_samples.h). Off: the sample point's value.
   void sample_wall_velocity(bool on) { wall_velocity_ = on; }

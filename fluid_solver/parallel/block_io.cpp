@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <stdexcept>
 #include <string_view>
 
@@ -97,9 +98,10 @@ std::vector<PhaseTotals> wall_exchange_over_blocks(const FluidSimulation& sim, c
   return summed(sim.embedded_wall_exchange(), comm);
 }
 
-void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
-                                const parallel::CartComm& comm) {
-  if (comm.size() == 1) return write_snapshot(series, sim);  // with the embedded interface segments
+void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim, const parallel::CartComm& comm,
+                                const std::string* segments_of_block) {
+  if (comm.size() == 1)  // with the embedded interface segments
+    return segments_of_block ? write_snapshot(series, sim, *segments_of_block) : write_snapshot(series, sim);
   const FluidScene& s = sim.scene();
   const SnapshotFields fields(sim);
   const io::UniformGrid g = snapshot_grid(s);
@@ -112,7 +114,8 @@ void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulatio
   const std::unique_ptr<io::CollectiveWrite> together = comm.collective_write();
   const std::filesystem::path h5 = series.write_part(sim.time(), sim.steps(), g, part, fields.views, *together);
   if (index == 0 && comm.rank() == 0) io::remove_numbered_files(h5.parent_path(), "fluid_interface_", ".csv");
-  const std::string segments = sim.interface_segments_csv();  // this block's cells' rows
+  const std::string segments =
+      segments_of_block ? *segments_of_block : sim.interface_segments_csv();  // this block's cells' rows
   if (!comm.any(!segments.empty())) return;
   const std::vector<std::string> parts = comm.gather_text(segments);
   if (comm.rank() == 0)
@@ -131,8 +134,8 @@ CellRange block_range(const parallel::CartComm& comm) {
 
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
                                          const io::SnapshotSeries& series, const FluidRunState& run,
-                                         const parallel::CartComm& comm) {
-  if (comm.size() == 1) return write_fluid_part(dir, sim, series, run);
+                                         const parallel::CartComm& comm, const coupled::CoupledBoundary* boundary) {
+  if (comm.size() == 1) return write_fluid_part(dir, sim, series, run, boundary);
   // Every rank writes its block of the mesh's cells into one file (collective HDF5; no rank holds another's cells);
   // the accounts are sums over the blocks; the rest is alike on every rank.
   std::vector<double> accounts = sim.account_values();
@@ -146,6 +149,7 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
                     {sim.conserved_cells(), std::move(accounts), sim.time(), sim.steps(), sim.conserved_vars(),
                      sim.body_state(), block_range(comm)},
                     2 * phases, sim.embedded_wall_exchange().empty() ? 0 : phases * (2 + sim.scene().dim));
+  if (boundary) boundary->save(w);
   checkpoint::put_series(w, "fluid", series);
   w.put_text("run.start_totals", run.start_totals.dump());
   w.put_text("run.counters", run.counters.dump());
@@ -154,8 +158,9 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
 }
 
 FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
-                                          io::SnapshotSeries& series, const parallel::CartComm& comm) {
-  if (comm.size() == 1) return read_fluid_part(set, sim, series);
+                                          io::SnapshotSeries& series, const parallel::CartComm& comm,
+                                          coupled::CoupledBoundary* boundary) {
+  if (comm.size() == 1) return read_fluid_part(set, sim, series, boundary);
   // Rank 0 checks the part against its set's manifest and reads what every rank shares; what it found (or why it
   // failed) reaches every rank. Then each rank reads its own block of the cells.
   nlohmann::json head;
@@ -176,9 +181,10 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
   if (comm.rank() != 0) series.follow(head["series"].get<std::vector<std::string>>());
   FluidStateEntries e;
   std::string error;
+  std::unique_ptr<checkpoint::PartReader> r;
   try {
-    const checkpoint::PartReader r(set / kFluidPart, "fluid");
-    e = read_fluid_state(r, sim.conserved_vars(), block_range(comm), sim.body_state().size());
+    r = std::make_unique<checkpoint::PartReader>(set / kFluidPart, "fluid");
+    e = read_fluid_state(*r, sim.conserved_vars(), block_range(comm), sim.body_state().size());
   } catch (const std::exception& x) { error = x.what(); }
   if (comm.any(!error.empty()))
     throw std::runtime_error(
@@ -190,6 +196,7 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
   sim.restore_progress(e.time, e.steps, e.accounts);
   // The bodies where the set left them, cut anew with the restored state (every block together).
   if (!e.body_vertices.empty()) sim.set_body_state(e.body_vertices);
+  if (boundary) boundary->restore(*r);  // the set's embedded boundary, cut by every block together
   FluidRunState run;
   run.cycle = head["cycle"].get<long>();
   run.time = head["run_time"].get<double>();

@@ -27,17 +27,22 @@ double embedded_cells_over_blocks(const FluidSimulation& sim, const parallel::Ca
 // order (rows of one cell keep their order).
 std::string merge_segment_rows(const std::vector<std::string>& parts);
 
-// The snapshot of the whole mesh; every rank keeps its `series` (rank 0's publishes the files).
-void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim,
-                                const parallel::CartComm& comm);
+// The snapshot of the whole mesh; every rank keeps its `series` (rank 0's publishes the files). `segments`: this
+// block's rows of the interface segments (a coupled run's boundary); null: the simulation's.
+void write_snapshot_over_blocks(io::SnapshotSeries& series, const FluidSimulation& sim, const parallel::CartComm& comm,
+                                const std::string* segments = nullptr);
 
-// DIR/fluid.h5 with the global state, written by rank 0 (its file name on every rank). The entries are those of one
-// rank's part (FluidSimulation::save_state), so a set restarts on any rank count.
+// DIR/fluid.h5 with the global state, written by every rank together (its block of the cells; its file name on
+// every rank). The entries are those of one rank's part (FluidSimulation::save_state), so a set restarts on any rank
+// count. A coupled run passes its boundary (alike on every rank).
 std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const FluidSimulation& sim,
                                          const io::SnapshotSeries& series, const FluidRunState& run,
-                                         const parallel::CartComm& comm);
-// Restores every rank's block from SET/fluid.h5 (verified and read by rank 0) and continues rank 0's series.
+                                         const parallel::CartComm& comm,
+                                         const coupled::CoupledBoundary* boundary = nullptr);
+// Restores every rank's block from SET/fluid.h5 (verified by rank 0, each rank reading its block) and continues
+// rank 0's series.
 FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, FluidSimulation& sim,
-                                          io::SnapshotSeries& series, const parallel::CartComm& comm);
+                                          io::SnapshotSeries& series, const parallel::CartComm& comm,
+                                          coupled::CoupledBoundary* boundary = nullptr);
 
 }  // namespace cosim::fluid

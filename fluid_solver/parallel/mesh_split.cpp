@@ -8,9 +8,6 @@
 namespace cosim::fluid {
 
 parallel::Layout fluid_layout(const FluidScene& scene, int ranks) {
-  if (ranks > 1 && scene.coupled)
-    throw std::invalid_argument(
-        fmt::format("{} ranks: a coupled fluid runs on one rank for now (the coupler serves one fluid process)", ranks));
   // The covered and uncovered cells' contents go to the flow cells around them (embedded/reach.h), which a block
   // would not yet reach across its borders.
   if (ranks > 1 && scene.embedded.conservative)
@@ -22,10 +19,9 @@ parallel::Layout fluid_layout(const FluidScene& scene, int ranks) {
   if (scene.parallel_ranks[0] > 0) {
     const parallel::Layout l{scene.parallel_ranks};
     if (auto problem = parallel::layout_problem(l, ranks, scene.dim, cells, kMinBlockCells))
-      throw std::invalid_argument(fmt::format("fluid.parallel.ranks [{}]: {}",
-                                              fmt::join(scene.parallel_ranks.begin(),
-                                                        scene.parallel_ranks.begin() + scene.dim, ", "),
-                                              *problem));
+      throw std::invalid_argument(fmt::format(
+          "fluid.parallel.ranks [{}]: {}",
+          fmt::join(scene.parallel_ranks.begin(), scene.parallel_ranks.begin() + scene.dim, ", "), *problem));
     return l;
   }
   return parallel::choose_layout(ranks, scene.dim, cells, kMinBlockCells);
