@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
 #include <stdexcept>
 
 #include "common/io/atomic_file.h"
@@ -38,14 +39,29 @@ PartWriter::~PartWriter() {
   if (leader()) fs::remove(tmp_, ignored);
 }
 
+// In a part written together every entry but put_part's is the leader's: the ranks' own values (a timer, a count of
+// their own) could otherwise give the datasets other shapes on different ranks, which a collective file cannot hold.
+template <class T>
+std::vector<T> PartWriter::leaders(std::span<const T> v) const {
+  if (!together_) return {v.begin(), v.end()};
+  const std::string mine(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  const std::string theirs = together_->from_leader(mine);
+  std::vector<T> out(theirs.size() / sizeof(T));
+  if (!out.empty()) std::memcpy(out.data(), theirs.data(), theirs.size());
+  return out;
+}
+
 void PartWriter::put(const std::string& name, std::span<const double> v) {
-  h5_.write_dataset("/" + name, v, {v.size()});
+  const std::vector<double> x = leaders(v);
+  h5_.write_dataset("/" + name, x, {x.size()});
 }
 void PartWriter::put(const std::string& name, std::span<const std::int64_t> v) {
-  h5_.write_dataset("/" + name, v, {v.size()});
+  const std::vector<std::int64_t> x = leaders(v);
+  h5_.write_dataset("/" + name, x, {x.size()});
 }
 void PartWriter::put(const std::string& name, std::span<const std::uint8_t> v) {
-  h5_.write_dataset("/" + name, v, {v.size()});
+  const std::vector<std::uint8_t> x = leaders(v);
+  h5_.write_dataset("/" + name, x, {x.size()});
 }
 void PartWriter::put_part(const std::string& name, std::span<const double> part, const io::Hdf5Shape& shape,
                           const io::Hdf5Shape& offset, const io::Hdf5Shape& count) {
@@ -57,8 +73,12 @@ void PartWriter::put_flags(const std::string& name, const std::vector<char>& fla
 void PartWriter::put_text(const std::string& name, std::string_view text) {
   put(name, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
-void PartWriter::put_scalar(const std::string& name, double v) { h5_.write_attribute("/", name, v); }
-void PartWriter::put_integer(const std::string& name, std::int64_t v) { h5_.write_attribute("/", name, v); }
+void PartWriter::put_scalar(const std::string& name, double v) {
+  h5_.write_attribute("/", name, leaders(std::span<const double>(&v, 1)).at(0));
+}
+void PartWriter::put_integer(const std::string& name, std::int64_t v) {
+  h5_.write_attribute("/", name, leaders(std::span<const std::int64_t>(&v, 1)).at(0));
+}
 
 void PartWriter::commit() {
   h5_.close();  // together: every rank's part is in the file when the close returns

@@ -57,6 +57,8 @@ class PartWriter {
   io::Hdf5File h5_;
   bool committed_ = false;
   bool leader() const;
+  template <class T>
+  std::vector<T> leaders(std::span<const T> v) const;
 };
 
 class PartReader {

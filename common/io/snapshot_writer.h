@@ -84,6 +84,8 @@ class CollectiveWrite {
   virtual bool leader() const = 0;
   virtual std::int64_t file_access() = 0;  // the shared file's HDF5 access property list (kept by the implementation)
   virtual void barrier() = 0;
+  // The leader's bytes on every process (what a collective file needs alike everywhere: names, shapes, values).
+  virtual std::string from_leader(const std::string& bytes) = 0;
 };
 
 // A process's part of a uniform grid: cells [lower, upper) along x, y, z.

@@ -282,6 +282,7 @@ class RankWrite final : public io::CollectiveWrite {
   bool leader() const override { return comm_.rank() == 0; }
   std::int64_t file_access() override { return access_ > 0 ? access_ : 0; }
   void barrier() override { comm_.barrier(); }
+  std::string from_leader(const std::string& bytes) override { return comm_.broadcast(bytes); }
 
  private:
   const CartComm& comm_;
