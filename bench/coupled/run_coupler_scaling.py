@@ -2,10 +2,10 @@
 """What one coupler process costs per cycle against the number of interface faces, with synthetic peers.
 
 For each face count N (default 1e2, 1e3, 1e4, 1e5, 1e6), the coupler runs a scene of --cycles cycles (dt 1e-4 s,
-the default robin interface conditions, the default pipelined scheme, one fluid phase) between two
+the default robin interface conditions, the default pipelined scheme) between two
 cosim_scripted_peer processes that do no solver work: the solid sends N quads in 3D (`--faces N`: a grid of 1 cm
 squares with their vertices, as the solid solver sends its exterior faces), the fluid answers each face with a
-fixed state. Per cycle (steady state: cycles --skip .. last-1 of coupler/timing.csv; coupler/history.h
+fixed state of --phases phases. Per cycle (steady state: cycles --skip .. last-1 of coupler/timing.csv; coupler/history.h
 CycleTiming):
   coupler = the coupler's own work: the faces and samples out of protobuf into arrays, the interface conditions,
             the states into protobuf, the interface history;
@@ -25,12 +25,14 @@ volume: a target refined with the background has 4800 P^(2/3) faces (10 x 40 x 4
 exterior quads), so the limit is reached at P = (N5 / 4800)^(3/2).
 
 Message buffers (--malloc default,kept): this machine (a paravirtualised guest) pays dearly for page faults, and
-with glibc's default malloc every message of more than 128 KiB to 32 MiB is a fresh mapping or freshly trimmed heap
-whose pages fault again in each copy: protobuf encode, ZeroMQ's frame, the kernel's socket buffer, the receiver's
+with glibc's default thresholds a large message lands in memory the allocator had given back to the kernel (a
+trimmed heap or a fresh mapping), whose pages fault again in each copy: protobuf encode, ZeroMQ's frame, the kernel's socket buffer, the receiver's
 frame, protobuf decode, the coupler's arrays. `kept` runs all three processes with
 GLIBC_TUNABLES=glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=16 GiB (no mappings, no trimming: freed buffers
 are reused by the next message): what reusing the message buffers would give, without changing any code. Each mode
-runs every size within each repeat, their order alternating too.
+runs every size within each repeat, their order alternating too. The peers do no work, so every transfer is on
+the critical path: an upper bound of what the faces cost a real pipelined cycle (docs/benchmarks.md compares it with
+the real scene).
 
 The fluid peer has --phases 2 (default; the tungsten blast's air and tungsten): its samples and states carry two
 phases per face. Sizes from --large-from (1e6) on run --large-cycles (12) cycles: a cycle there takes seconds.
