@@ -202,6 +202,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     problem = coupling::validate_sample_pressures(e->samples(), p.phase_min_pressure, p.phase_names);
   if (!problem.empty()) fail_peer(known, "sent an invalid message: " + problem);
   p.busy += std::max(0.0, h.busy_seconds());
+  p.bytes_received += static_cast<double>(frames[1].size());
   p.output += std::clamp(h.output_seconds(), 0.0, std::max(0.0, h.busy_seconds()));
   out = {known, std::move(*e)};
   return true;
@@ -280,8 +281,10 @@ void Hub::send(Role to, pb::Envelope& e) {
   cycle_ = e.header().cycle();
   time_ = e.header().time();
   beats_->set_clock(cycle_, time_);
-  const Peer& p = peer(to);
-  if (!sock_.send({p.id, coupling::encode(e)}, 2000)) {
+  Peer& p = peer(to);
+  std::string bytes = coupling::encode(e);
+  p.bytes_sent += static_cast<double>(bytes.size());
+  if (!sock_.send({p.id, std::move(bytes)}, 2000)) {
     blame(to);
     throw PeerLost(
         fmt::format("{} cannot be reached (connection closed) for {}", p.describe(to), coupling::body_name(e)));

@@ -46,6 +46,7 @@ struct Peer {
   double busy = 0;                               // sum of Header.busy_seconds received [s]
   double output = 0;                             // of which Header.output_seconds (snapshots, checkpoints) [s]
   double longest_answer = 0;                     // the longest wait for one of its data messages [s]
+  double bytes_received = 0, bytes_sent = 0;     // its data messages after the handshake, encoded envelopes [B]
   bool beats_on_data = false;                    // it sent a Heartbeat on the data connection (logged once)
   coupling::pb::Envelope hello, welcome;         // kept for the transcript
   std::string describe(coupling::Role r) const;  // "fluid (fluid_solver, pid 1234)"

@@ -35,7 +35,8 @@ using namespace cosim;
 
 namespace {
 void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& s, coupling::Scheme scheme,
-                   const std::string& peer) {
+                   const coupler::Hub& hub) {
+  const std::string& peer = hub.blamed();
   const double n = std::max<long>(s.cycles, 1);
   nlohmann::json j;
   j["status"] = s.status;
@@ -51,6 +52,10 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
                             {"fluid", s.total.fluid / n},   {"coupler", s.total.coupler / n},
                             {"output", s.total.output / n}, {"comm", s.total.comm() / n}};
   j["comm_fraction"] = s.total.wall > 0 ? s.total.comm() / s.total.wall : 0.0;
+  // The encoded envelopes of the data messages after the handshake, whole run [bytes] (ZeroMQ framing not counted).
+  for (const coupling::Role r : {coupling::Role::Fluid, coupling::Role::Solid})
+    j["message_bytes"][coupling::role_name(r)] = {{"received", hub.peer(r).bytes_received},
+                                                  {"sent", hub.peer(r).bytes_sent}};
   io::write_file_atomically(dir / "coupler_summary.json", j.dump(2) + "\n");  // whole, or the earlier one
 }
 }  // namespace
@@ -155,7 +160,7 @@ int main(int argc, char** argv) {
     spdlog::info("listening on {} ({} coupling, {} cycle, timeout {:g} s)", hub.bound_endpoint(),
                  coupling::mode_name(cfg.mode), coupling::scheme_name(cfg.scheme), cfg.timeout);
     const coupler::RunSummary s = coupler::run_coupled(cfg, hub, out, ck);
-    write_summary(out, s, cfg.scheme, hub.blamed());
+    write_summary(out, s, cfg.scheme, hub);
     if (s.code == 0) {
       const double n = std::max<long>(s.cycles, 1);
       spdlog::info(

@@ -4,19 +4,25 @@
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
 //                       [--extra-proposals N] [--sample-delay-ms T] [--hang-after N] [--min-pressure P]
+//                       [--faces N]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
 //        fixed --velocity, impedance --impedance (inf: rigid); it proposes --dt each cycle, and with
 //        --extra-proposals N sends N more DtProposals right after its faces (a misbehaving peer).
+//        --faces N: instead, N square quads in 3D (side 0.01 m, area 1e-4 m^2, normal +x) in the plane x = x(t),
+//        row by row in a grid of ceil(sqrt(N)) columns along y from (y, z) = (0, 0), with their vertices: an
+//        interface of any size for benchmarks (the plane moves with --velocity along x).
 //        --sample-delay-ms T makes the fluid wait T ms before each FluidSamples (a slow peer).
 // --hang-after N: after N cycles it stops answering but keeps its heartbeats (a hung solver loop).
-// Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr).
+// Exit: 0 after a normal Stop, 5 on any coupling error (message on stderr), 2 for --faces with --role fluid.
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -27,6 +33,57 @@
 #include "common/coupling/scene_hash.h"
 
 using namespace cosim::coupling;
+
+namespace {
+// The solid's faces of the default 1D slab between x = -1 + x and x (two faces).
+Faces slab_faces(double x, double velocity, double impedance) {
+  Faces f;
+  f.dim = 2;
+  f.count = 2;
+  f.centre = {-1.0 + x, 0.0125, x, 0.0125};
+  f.normal = {-1.0, 0.0, 1.0, 0.0};
+  f.area = {0.025, 0.025};
+  f.velocity = {velocity, 0.0, velocity, 0.0};
+  f.normal_stress = {0.0, 0.0};
+  f.impedance = {impedance, impedance};
+  return f;
+}
+
+// --faces N: N quads of side h in the plane x, normal +x, columns along y, rows along z; the vertices of the
+// whole grid (ny + 1 rows of nx + 1), each quad's counter-clockwise seen from +x (right-hand rule gives +x).
+Faces grid_faces(int n, double x, double velocity, double impedance) {
+  constexpr double h = 0.01;
+  const int nx = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int ny = (n + nx - 1) / nx;
+  const auto un = static_cast<std::size_t>(n);
+  Faces f;
+  f.dim = 3;
+  f.count = n;
+  f.centre.resize(3 * un);
+  f.normal.resize(3 * un);
+  f.velocity.resize(3 * un);
+  f.area.assign(un, h * h);
+  f.normal_stress.assign(un, 0.0);
+  f.impedance.assign(un, impedance);
+  f.nodes_per_face = 4;
+  f.face_vertex.resize(4 * un);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) f.vertex_position.insert(f.vertex_position.end(), {x, i * h, j * h});
+  for (int k = 0; k < n; ++k) {
+    const int i = k % nx, j = k / nx;
+    const std::size_t c = 3 * static_cast<std::size_t>(k);
+    f.centre[c] = x;
+    f.centre[c + 1] = (i + 0.5) * h;
+    f.centre[c + 2] = (j + 0.5) * h;
+    f.normal[c] = 1.0;
+    f.velocity[c] = velocity;
+    const auto v = [&](int a, int b) { return static_cast<std::uint32_t>(b * (nx + 1) + a); };
+    const std::uint32_t q[4] = {v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)};
+    std::copy(q, q + 4, f.face_vertex.begin() + 4 * static_cast<std::ptrdiff_t>(k));
+  }
+  return f;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"scripted coupling peer (test harness)"};
@@ -59,7 +116,14 @@ int main(int argc, char** argv) {
   int sample_delay_ms = 0;
   app.add_option("--sample-delay-ms", sample_delay_ms, "fluid: wait this long before sending its samples");
   app.add_option("--hang-after", hang_after, "cycles after which it stops answering (heartbeats go on)");
+  int faces = 0;
+  app.add_option("--faces", faces, "solid: N quads in 3D instead of the 1D slab's two faces")
+      ->check(CLI::Range(1, 100000000));
   CLI11_PARSE(app, argc, argv);
+  if (faces > 0 && role != "solid") {
+    std::cerr << "[scripted-" << role << "] error: --faces is an option of --role solid\n";
+    return 2;
+  }
   if (token.empty()) token = cosim::app::token_from_environment();  // as cosim run passes it
   const std::string tag = "[scripted-" + role + "] ";
   try {
@@ -91,16 +155,7 @@ int main(int argc, char** argv) {
       if (d.kind == Directive::Kind::Output) continue;
       if (o.role == Role::Solid) {
         x += velocity * d.dt;
-        Faces f;
-        f.dim = 2;
-        f.count = 2;
-        f.centre = {-1.0 + x, 0.0125, x, 0.0125};
-        f.normal = {-1.0, 0.0, 1.0, 0.0};
-        f.area = {0.025, 0.025};
-        f.velocity = {velocity, 0.0, velocity, 0.0};
-        f.normal_stress = {0.0, 0.0};
-        f.impedance = {impedance, impedance};
-        c.send_faces(f);
+        c.send_faces(faces > 0 ? grid_faces(faces, x, velocity, impedance) : slab_faces(x, velocity, impedance));
         for (int k = 0; k < extra_proposals; ++k) c.propose_dt(dt);
         c.receive_states();
       } else {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "common/coupling/wire.h"
@@ -312,4 +314,44 @@ TEST(CouplingProcesses, ExchangeLatencyAgainstABareRoundTrip) {
   std::cout << "[ info ] bare round trip " << bare * 1e6 << " us; coupled cycle communication " << comm * 1e6
             << " us = " << comm / 4 * 1e6 << " us per exchange (" << comm / 4 / bare << "x bare)\n";
   EXPECT_LT(comm, 0.01);  // sanity: far below a millisecond per exchange on an idle machine
+}
+
+TEST(CouplingProcesses, ScriptedSolidSendsTheFacesItIsAskedFor) {
+  // --faces 37: a 7-column grid of 1 cm quads (5 full rows and 2 faces) in the plane x = 0, normal +x, at rest; the
+  // fluid's pressure 2e5 Pa on every face. The coupler's force -sum p A n and area-weighted centre count the faces.
+  ThreeProcs r("grid_faces", "  mode: robin\n  time: {end: 1.0e-3}\n  timeout: 5.0\n", {"--pressure", "2e5"},
+               {"--faces", "37", "--velocity", "0"});
+  wait_all(r.cs, 20);
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(r.cs[i].exit_code, 0) << r.cs[i].name << ":\n" << r.log(i);
+  std::istringstream hist(read_file(r.dir / "out" / "interface_history.csv"));
+  std::string line, last;
+  int rows = 0;
+  for (std::getline(hist, line); std::getline(hist, line); ++rows) last = line;
+  ASSERT_EQ(rows, 11);  // cycle 0 (exchange only), then 1 ms in steps of the peers' 1e-4 s
+  std::vector<double> v;
+  std::istringstream cells(last);
+  for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+  ASSERT_EQ(v.size(), 13u);
+  EXPECT_NEAR(v[3], -2e5 * 37 * 1e-4, 1e-9);  // force_x [N]
+  EXPECT_EQ(v[4], 0.0);
+  EXPECT_EQ(v[5], 0.0);
+  EXPECT_NEAR(v[9], 0.0, 1e-15);                         // centre_x: the plane x = 0
+  EXPECT_NEAR(v[10], (106.0 / 37 + 0.5) * 0.01, 1e-12);  // columns: 5 x (0 + ... + 6) + 0 + 1
+  EXPECT_NEAR(v[11], (80.0 / 37 + 0.5) * 0.01, 1e-12);   // rows: 7 x (0 + ... + 4) + 2 x 5
+  EXPECT_NEAR(v[12], 2e5, 1e-9);
+  // The solid's Faces message carries at least 37 x 12 doubles and the 8 x 7 vertices, and the coupler forwards it.
+  const auto j = nlohmann::json::parse(read_file(r.dir / "out" / "coupler_summary.json"));
+  const double cycles = j["cycles"].get<double>() + 1, least = 37 * 12 * 8 + 56 * 3 * 8 + 37 * 4;
+  const double from_solid = j["message_bytes"]["solid"]["received"].get<double>() / cycles;
+  EXPECT_GT(from_solid, least);
+  EXPECT_LT(from_solid, least + 400);  // and little else: a DtProposal and the header
+  EXPECT_GT(j["message_bytes"]["fluid"]["sent"].get<double>() / cycles, least);
+}
+
+TEST(CouplingProcesses, ScriptedFluidRefusesFaces) {
+  const fs::path dir = test_dir("fluid_faces");
+  const auto [rc, out] = run_shell(dir, bin("cosim_scripted_peer").string() +
+                                            " --role fluid --faces 3 --endpoint ipc://" + (dir / "x.sock").string());
+  EXPECT_EQ(rc, 2) << out;
+  EXPECT_NE(out.find("--faces is an option of --role solid"), std::string::npos) << out;
 }
