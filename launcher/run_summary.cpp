@@ -173,6 +173,14 @@ void write_run_summary(const std::filesystem::path& out, const RunEnd& end, cons
       nlohmann::json last = nlohmann::json::array();
       for (std::string l; std::getline(lines, l);) last.push_back(l);
       f["last_log_lines"] = last;
+      // A solver on several ranks names the rank that failed, or fell silent, in its summary.json.
+      const nlohmann::json own = read_json(out / end.failed->name / "summary.json");
+      if (own.is_object() && own.contains("parallel") && own["parallel"].contains("failed_rank")) {
+        f["rank"] = own["parallel"]["failed_rank"];
+        f["ranks"] = own["parallel"].value("ranks", 0);
+        if (own["parallel"].contains("noticed_by")) f["noticed_by"] = own["parallel"]["noticed_by"];
+        f["error"] = own.value("error", "");
+      }
       j["failed_process"] = f;
     }
     io::write_file_atomically(out / "run_summary.json", j.dump(2) + "\n");

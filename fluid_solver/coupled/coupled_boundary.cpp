@@ -33,9 +33,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     const FluidScene& s = sim.scene();
     opt_.band_cells = s.embedded.band;
     opt_.periodic = periodic_directions(s);
-    if (!s.block.whole())
-      on_block_ = std::make_unique<BlockGeometry<DIM>>(
-          Grid<DIM>(s.cells, s.lower, s.upper, s.block.first, s.block.count), opt_);
+    if (!block_grid().whole()) on_block_ = std::make_unique<BlockGeometry<DIM>>(block_grid(), opt_);
   }
 
   void set_block_links(BlockLinks* links) override {
@@ -147,7 +145,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
  private:
   Grid<DIM> block_grid() const {
     const FluidScene& s = sim_.scene();
-    return Grid<DIM>(s.cells, s.lower, s.upper, s.block.first, s.block.count);
+    return Grid<DIM>(s.cells, s.lower, s.upper, s.block.first, s.block.whole() ? s.cells : s.block.count);
   }
   FluidSimulation& sim_;
   Grid<DIM> g_;

@@ -1,11 +1,13 @@
 // A coupled run whose fluid runs on several MPI ranks (cosim run --fluid-ranks N): each block cuts the interface over
 // its cells and samples the faces centred in it, rank 0 talks to the coupler for all. The fluid, solid and interface
 // snapshots and the interface history equal the one-rank run's bit for bit, on 2 and 3 ranks in 2D and on 2 in 3D; a
-// set written on 2 fluid ranks restarts on 3 and ends as the uninterrupted run. The fluid's summary proves the ranks
-// were real (ranks and layout).
+// set written on 2 fluid ranks restarts on 3 and ends as the uninterrupted run; a stopped fluid rank ends the run,
+// named in run_summary.json. The fluid's summary proves the ranks were real (ranks and layout).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "common/checkpoint/checkpoint_sets.h"
 #include "coupled_test_util.h"
@@ -65,4 +67,43 @@ TEST(CoupledRanks, ASetOfTwoFluidRanksRestartsOnThree) {
   ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(resumed.string() + ".log") << run_logs(resumed);
   expect_fluid_ranks(resumed, 3, {3, 1});
   expect_same_runs(full, resumed, 3);
+}
+
+// SIGSTOP of one fluid rank of 2 in a coupled run (silent, not dead): the other rank's watchdog notices, the fluid
+// ends with code 5, the coupler stops the solid, and run_summary.json names the fluid and the silent rank, all within
+// 5 s of the stop; no process of the run is left.
+TEST(CoupledRanks, AStoppedFluidRankEndsTheCoupledRunNamingTheRank) {
+  const fs::path out = run_dir("ranks_stopped");
+  std::chrono::steady_clock::time_point sent_at;
+  std::thread stopper([&] {
+    for (int i = 0; i < 600; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (fs::exists(out / "fluid" / "fluid_000001.h5")) break;
+    }
+    sent_at = std::chrono::steady_clock::now();
+    const std::string cmd = "pkill -STOP -n -f 'fluid_solve[r] .*--out " + (out / "fluid").string() + " '";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+  });
+  const int rc = cosim_run(scene_file("piston_2d"), out, "--fluid-ranks 2 --set coupling.output.interval=0.01");
+  const auto ended = std::chrono::steady_clock::now();
+  stopper.join();
+  const double after_stop = std::chrono::duration<double>(ended - sent_at).count();
+  EXPECT_NE(rc, 0) << run_logs(out);
+  EXPECT_LT(after_stop, 5.0) << run_logs(out);
+  const nlohmann::json s = nlohmann::json::parse(read_text(out / "run_summary.json"));
+  EXPECT_EQ(s["status"].get<std::string>(), "failed") << s.dump(2);
+  const nlohmann::json& f = s["failed_process"];
+  EXPECT_EQ(f["name"].get<std::string>(), "fluid") << s.dump(2);
+  ASSERT_TRUE(f.contains("rank")) << s.dump(2);
+  const int silent = f["rank"].get<int>();
+  EXPECT_TRUE(silent == 0 || silent == 1) << s.dump(2);
+  EXPECT_EQ(f["noticed_by"].get<int>(), 1 - silent) << s.dump(2);
+  EXPECT_NE(f["error"].get<std::string>().find("rank " + std::to_string(silent) + " of 2 has been silent"),
+            std::string::npos)
+      << s.dump(2);
+  for (const char* p : {"fluid_solve[r]", "solid_solve[r]", "couple[r]"})
+    EXPECT_NE(std::system(("pgrep -f '" + std::string(p) + " .*" + out.string() + "' > /dev/null").c_str()), 0)
+        << p << " was left behind";
+  std::printf("[ measured ] one of 2 coupled fluid ranks stopped: the run ended %.2f s after the stop (rank %d)\n",
+              after_stop, silent);
 }

@@ -236,7 +236,7 @@ TEST(FluidRanks, AStoppedRankEndsTheRunWithinFiveSeconds) {
 }
 
 // cosim run --fluid-ranks N starts a fluid-only scene on N ranks (mpirun before fluid_solver in launch.json) with
-// the one-rank run's snapshots; a coupled scene is refused before anything starts.
+// the one-rank run's snapshots; fluid ranks for a scene without a fluid are refused before anything starts.
 TEST(FluidRanks, CosimRunStartsTheFluidOnRanks) {
   const std::string cosim = std::string(COSIM_BINARY_DIR) + "/bin/cosim";
   if (!std::filesystem::exists(cosim)) GTEST_SKIP() << "cosim is not built (COSIM_BUILD_COUPLING off)";
@@ -250,11 +250,12 @@ TEST(FluidRanks, CosimRunStartsTheFluidOnRanks) {
   EXPECT_EQ(summary_of(two / "fluid")["parallel"]["ranks"].get<int>(), 2);
   const nlohmann::json launch = nlohmann::json::parse(cosim::test::read_text(two / "launch.json"));
   EXPECT_EQ(launch["commands"]["fluid"][0], "mpirun");
-  const auto refused = scratch_path("cosim_ranks_coupled");
-  const std::string coupled = cosim + " run " + scene_path("piston_2d") + " --quiet --fluid-ranks 2 --out " +
-                              refused.string() + " > " + refused.string() + ".log 2>&1";
-  EXPECT_EQ(WEXITSTATUS(std::system(coupled.c_str())), 2);
-  EXPECT_NE(cosim::test::read_text(refused.string() + ".log").find("a coupled run has one fluid rank for now"),
-            std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(refused / "fluid"));
+  const auto refused = scratch_path("cosim_ranks_no_fluid");
+  const std::string solid_only = cosim + " run " + scene_path("solid_piston_1d") + " --quiet --fluid-ranks 2 --out " +
+                                 refused.string() + " > " + refused.string() + ".log 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(solid_only.c_str())), 2);
+  EXPECT_NE(cosim::test::read_text(refused.string() + ".log").find("2 fluid ranks: a solid-only run has no fluid"),
+            std::string::npos)
+      << cosim::test::read_text(refused.string() + ".log");
+  EXPECT_FALSE(std::filesystem::exists(refused / "solid"));
 }
