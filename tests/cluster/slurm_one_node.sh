@@ -2,7 +2,8 @@
 # A one-node SLURM cluster made for the test (its own munged, slurmctld and slurmd, ports and state in a scratch
 # folder): a fluid-only scene submitted with sbatch runs its ranks through srun and ends with the snapshots of one
 # rank, bit for bit; a job cancelled as a time limit ends it (SIGTERM, then SIGKILL) leaves a run that a second job
-# restarts with `cosim run --restart` from its newest checkpoint set, ending as the uninterrupted run.
+# restarts with `cosim run --restart` from its newest checkpoint set, ending as the uninterrupted run; a coupled scene
+# with 2 fluid ranks under srun ends with the fluid, solid and interface snapshots of the one-rank run.
 # Usage: slurm_one_node.sh BUILD_DIR   (as root; exit 77 where slurm-wlm or munge is not installed)
 set -euo pipefail
 build="$(cd "$1" && pwd)"
@@ -103,7 +104,7 @@ submit() {  # submit RUN OUTPUT [sbatch options] -- [cosim run arguments]
   # --overcommit: two tasks also on a one-core machine; a job that cannot start fails the test in 5 minutes, never
   # waits for ever.
   timeout 300 sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks=2 --ntasks-per-node=2 --cpus-per-task=1 --overcommit \
-    --output="$output" --export="ALL,SCENE=$scene,RUN=$run,COSIM=$cosim" "${opts[@]}" "$job_script" "$@"
+    --output="$output" --export="ALL,SCENE=${job_scene:-$scene},RUN=$run,COSIM=$cosim" "${opts[@]}" "$job_script" "$@"
 }
 
 # 2. A batch job of two tasks: cosim starts the fluid's ranks with srun.
@@ -138,5 +139,21 @@ env -u SLURM_JOB_ID "$cosim" run "$scene" --quiet --out "$work/whole" $long > "$
 /usr/bin/python3 "$source_dir/tests/cluster/same_snapshots.py" "$work/whole/fluid" "$work/three/fluid" ||
   fail "the job restarted after its time limit differs from the uninterrupted run"
 
-[ "$ok" = 1 ] && echo "one-node SLURM: srun ranks equal one rank; a cancelled job restarts bit for bit"
+# 4. A coupled run (the piston) in a batch job of two tasks: the fluid's two ranks through srun, the solid and the
+#    coupler beside them; the fluid, solid and interface snapshots equal the one-rank run's without SLURM.
+coupled="$source_dir/configs/piston_2d.yaml"
+csets="--set coupling.time.end=0.02 --set coupling.output.interval=0.005"
+env -u SLURM_JOB_ID "$cosim" run "$coupled" --quiet --out "$work/coupled_one" $csets > "$work/coupled_one.log" 2>&1 ||
+  fail "the coupled one-rank run failed: $(tail -n 5 "$work/coupled_one.log")"
+job_scene="$coupled" submit "$work/coupled_two" "$work/job5.out" --wait -- $csets > /dev/null ||
+  { cat "$work/job5.out"; fail "the coupled batch job of two fluid ranks failed"; }
+grep -q '"srun"' "$work/coupled_two/launch.json" || fail "the coupled job does not start the fluid with srun"
+ranks="$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["parallel"]["ranks"])' "$work/coupled_two/fluid/summary.json")"
+[ "$ranks" = 2 ] || fail "the coupled fluid's summary says $ranks ranks, expected 2"
+for part in fluid solid coupler; do
+  /usr/bin/python3 "$source_dir/tests/cluster/same_snapshots.py" "$work/coupled_one/$part" "$work/coupled_two/$part" ||
+    fail "the coupled job's $part snapshots differ from the one-rank run's"
+done
+
+[ "$ok" = 1 ] && echo "one-node SLURM: srun ranks equal one rank, alone and coupled; a cancelled job restarts bit for bit"
 [ "$ok" = 1 ]
