@@ -83,7 +83,10 @@ std::string RankRelay::relayed(const std::function<std::string()>& receive) {
   }
   if (share_) out = share_(out);
   if (out.empty()) throw std::logic_error("a relayed message without a connection on rank 0");
-  if (out[0] == kFailure) rethrow(out);
+  if (out[0] == kFailure) {
+    failed_together_ = true;
+    rethrow(out);
+  }
   return out.substr(1);
 }
 

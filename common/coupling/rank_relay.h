@@ -22,6 +22,9 @@ class RankRelay {
   // rank's relay is not connected()). `share`: empty when the solver runs on one rank.
   RankRelay(std::unique_ptr<Client> client, Share share);
   bool connected() const { return connected_; }
+  // Whether a receiving call threw what rank 0's threw (every rank threw it at the same call, so every rank may go
+  // on to end the run together; a failure of one rank's own may leave the others waiting in an exchange).
+  bool failed_together() const { return failed_together_; }
 
   Directive next();
   Faces receive_faces();
@@ -50,6 +53,7 @@ class RankRelay {
   std::unique_ptr<Client> client_;
   Share share_;
   bool connected_ = false;
+  bool failed_together_ = false;
   Mode mode_ = Mode::Robin;
   Scheme scheme_ = Scheme::Pipelined;
   double timeout_ = 0;

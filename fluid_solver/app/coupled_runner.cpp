@@ -170,7 +170,10 @@ int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.status = res.status;
   rec.error = res.error;
   rec.wall = res.wall;
-  if (res.code != 0 && comm.size() > 1) fail_alone(res.code, res.error.empty() ? res.status : res.error);
+  // A failure of this rank's own ends every rank from here; one that every rank received from the coupler (through
+  // rank 0) ends the run together, with one summary.
+  if (res.code != 0 && comm.size() > 1 && !link->failed_together())
+    fail_alone(res.code, res.error.empty() ? res.status : res.error);
   rec.extra["coupling"] = {{"endpoint", opt.coupler},
                            {"cycles", res.cycles},
                            {"snapshots", res.snapshots},

@@ -1,6 +1,7 @@
 // The real solvers and their coupler under signals: SIGTERM ends a solver waiting on a silent (SIGSTOPped) coupler
 // at once, exit 130 and summary.json status "interrupted"; a killed coupler is seen at once (its connection closes),
-// not after the heartbeat timeout; a stopped solver ends `cosim run` within 5 s with the cause in run_summary.json;
+// not after the heartbeat timeout, also by a fluid on 2 ranks (together, one summary); a stopped solver ends `cosim
+// run` within 5 s with the cause in run_summary.json;
 // one run per run directory.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -47,7 +48,8 @@ double seconds_until_exit(Child& c, double limit) {
 struct RealRun {
   fs::path dir;
   std::vector<Child> cs;  // coupler, fluid, solid
-  explicit RealRun(const std::string& name) {
+  // fluid_ranks > 1: the fluid under mpirun.
+  explicit RealRun(const std::string& name, int fluid_ranks = 1) {
     dir = test_dir(name);
     const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
     const std::string ep = "ipc://" + (dir / "c.sock").string();
@@ -56,11 +58,16 @@ struct RealRun {
       a.insert(a.end(), sets.begin(), sets.end());
       return a;
     };
+    std::vector<std::string> fluid;
+    if (fluid_ranks > 1)
+      fluid = {"mpirun", "--allow-run-as-root",      "--oversubscribe", "--bind-to", "none",
+               "-np",    std::to_string(fluid_ranks)};
+    for (const std::string& a :
+         {bin("fluid_solver").string(), scene.string(), std::string("--out"), (dir / "fluid").string(),
+          std::string("--coupler"), ep, std::string("--token"), std::string("tok"), std::string("--quiet")})
+      fluid.push_back(a);
     cs = {child("coupler", with_sets(coupler_args(ep, scene, dir / "coupler")), dir),
-          child("fluid",
-                with_sets({bin("fluid_solver").string(), scene.string(), "--out", (dir / "fluid").string(), "--coupler",
-                           ep, "--token", "tok", "--quiet"}),
-                dir),
+          child("fluid", with_sets(fluid), dir),
           child("solid",
                 with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(), "--coupler",
                            ep, "--token", "tok", "--quiet"}),
@@ -115,6 +122,27 @@ TEST(SolverSignals, ASolverSeesItsCouplerDieAtOnce) {
     EXPECT_EQ(j["status"], "failed") << cs[i].name;
     EXPECT_NE(j.dump().find("closed the connection"), std::string::npos) << j.dump();
   }
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
+}
+
+// The same with the fluid on 2 MPI ranks: rank 0 sees the connection close and every rank receives the failure
+// through it, so the ranks end together at once, with one summary (the cause, both ranks, none blamed).
+TEST(SolverSignals, AFluidOnTwoRanksSeesItsCouplerDieTogether) {
+  RealRun r("coupler_killed_ranks", 2);
+  ASSERT_TRUE(r.running_coupled());
+  auto& cs = r.cs;
+  ::kill(cs[0].pid, SIGKILL);
+  const auto t0 = std::chrono::steady_clock::now();
+  wait_all(cs, 10);
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("the fluid's 2 ranks and the solid ended %.2f s after the coupler was killed\n", waited);
+  EXPECT_LT(waited, 3.0);
+  EXPECT_EQ(cs[1].exit_code, 5) << read_file(cs[1].log);
+  const nlohmann::json j = r.summary(1);
+  EXPECT_EQ(j["status"], "failed") << j.dump();
+  EXPECT_NE(j.dump().find("closed the connection"), std::string::npos) << j.dump();
+  EXPECT_EQ(j["parallel"]["ranks"].get<int>(), 2) << j.dump();
+  EXPECT_FALSE(j["parallel"].contains("failed_rank")) << j.dump();
   EXPECT_FALSE(process_with_argument(r.dir.string()));
 }
 
