@@ -91,6 +91,15 @@ std::vector<hsize_t> checked_dims(const Hdf5Shape& shape, std::size_t count, con
   return {shape.begin(), shape.end()};
 }
 
+// The dimensions of a dataspace, slowest first.
+std::vector<hsize_t> extent_of(hid_t space, const Site& site) {
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) site.fail("query rank of");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  site.check(H5Sget_simple_extent_dims(space, dims.data(), nullptr), "query shape of");
+  return dims;
+}
+
 void write_dataset_raw(hid_t file, const Site& site, const std::string& name, const void* data, std::size_t count,
                        const Hdf5Shape& shape, hid_t file_type, hid_t mem_type) {
   const std::vector<hsize_t> dims = checked_dims(shape, count, site);
@@ -294,14 +303,10 @@ void Hdf5File::write_dataset(const std::string& name, std::span<const std::uint8
 }
 
 Hdf5Shape Hdf5File::dataset_shape(const std::string& name) const {
-  const hid_t file = checked_id("read a dataset");
   const Site site = dataset_site(path_, name);
-  const Handle dset = site.own(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose, "open");
+  const Handle dset = site.own(H5Dopen2(checked_id("read a dataset"), name.c_str(), H5P_DEFAULT), H5Dclose, "open");
   const Handle space = site.own(H5Dget_space(dset.get()), H5Sclose, "query");
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) site.fail("query rank of");
-  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
-  site.check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "query shape of");
+  const std::vector<hsize_t> dims = extent_of(space.get(), site);
   return {dims.begin(), dims.end()};
 }
 
@@ -316,16 +321,12 @@ std::vector<std::int64_t> Hdf5File::read_int64s(const std::string& name) const {
 
 std::vector<double> Hdf5File::read_doubles_part(const std::string& name, const Hdf5Shape& offset,
                                                 const Hdf5Shape& count) const {
-  const hid_t file = checked_id("read a dataset");
   const Site site = dataset_site(path_, name);
-  const Handle dset = site.own(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose, "open");
+  const Handle dset = site.own(H5Dopen2(checked_id("read a dataset"), name.c_str(), H5P_DEFAULT), H5Dclose, "open");
   const Handle space = site.own(H5Dget_space(dset.get()), H5Sclose, "query");
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  if (rank < 0) site.fail("query rank of");
-  if (offset.size() != static_cast<std::size_t>(rank) || count.size() != offset.size())
-    site.invalid(fmt::format("a part of {} axes asked of a dataset of {}", count.size(), rank));
-  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
-  site.check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), "query shape of");
+  const std::vector<hsize_t> dims = extent_of(space.get(), site);
+  if (offset.size() != dims.size() || count.size() != offset.size())
+    site.invalid(fmt::format("a part of {} axes asked of a dataset of {}", count.size(), dims.size()));
   const std::vector<hsize_t> start(offset.begin(), offset.end()), part(count.begin(), count.end());
   std::size_t n = 1;
   for (std::size_t d = 0; d < dims.size(); ++d) {

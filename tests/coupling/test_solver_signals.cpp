@@ -75,6 +75,13 @@ struct RealRun {
     for (auto& c : cs) launcher::start(c);
   }
   ::testing::AssertionResult running_coupled() { return ::running_coupled({&cs[0], &cs[1], &cs[2]}, dir); }
+  // Kills the coupler outright; the seconds until every process has ended (at most 10).
+  double seconds_to_end_after_the_coupler_is_killed() {
+    ::kill(cs[0].pid, SIGKILL);
+    const auto t0 = std::chrono::steady_clock::now();
+    wait_all(cs, 10);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   nlohmann::json summary(int i) const { return nlohmann::json::parse(read_file(dir / cs[i].name / "summary.json")); }
 };
 
@@ -109,10 +116,7 @@ TEST(SolverSignals, ASolverSeesItsCouplerDieAtOnce) {
   RealRun r("coupler_killed");
   ASSERT_TRUE(r.running_coupled());
   auto& cs = r.cs;
-  ::kill(cs[0].pid, SIGKILL);
-  const auto t0 = std::chrono::steady_clock::now();
-  wait_all(cs, 10);
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double waited = r.seconds_to_end_after_the_coupler_is_killed();
   std::printf("both solvers ended %.2f s after the coupler was killed\n", waited);
   EXPECT_LT(waited, 1.5);
   for (int i : {1, 2}) {
@@ -131,10 +135,7 @@ TEST(SolverSignals, AFluidOnTwoRanksSeesItsCouplerDieTogether) {
   RealRun r("coupler_killed_ranks", 2);
   ASSERT_TRUE(r.running_coupled());
   auto& cs = r.cs;
-  ::kill(cs[0].pid, SIGKILL);
-  const auto t0 = std::chrono::steady_clock::now();
-  wait_all(cs, 10);
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double waited = r.seconds_to_end_after_the_coupler_is_killed();
   std::printf("the fluid's 2 ranks and the solid ended %.2f s after the coupler was killed\n", waited);
   EXPECT_LT(waited, 3.0);
   EXPECT_EQ(cs[1].exit_code, 5) << read_file(cs[1].log);
