@@ -99,18 +99,30 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
 
 // embedded.conservative (docs/methods.md §5.8): e.fluid_fraction per padded cell of g. The fluid fraction of a cell
 // whose centre is less than its width along the normal from the surface: that of the plane (1/2 + phi / sum_d |n_d|
-// dx_d, exact for a plane along a grid axis); the others are wholly on one side. A pass over every cell: only for a
+// dx_d, exact for a plane along a grid axis); the others are wholly on one side. With it the rate at which the
+// surface's motion changes it (e.fluid_fraction_rate, only where a wall moves). A pass over every cell: only for a
 // conservative boundary.
 template <int DIM>
-void add_fluid_fractions(const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo, EmbeddedState& e) {
+void add_fluid_fractions(const Grid<DIM>& g, const embedded::Surface& s, const embedded::EmbeddedGeometry<DIM>& geo,
+                         EmbeddedState& e) {
   e.fluid_fraction.resize(g.total);
+  bool moving = false;
+  for (const embedded::Vec3& v : s.velocities) moving = moving || v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0;
+  if (moving) e.fluid_fraction_rate.assign(g.total, 0.0);
+  else e.fluid_fraction_rate.clear();
   for (std::size_t c = 0; c < g.total; ++c) {
     const double phi = geo.centres.phi[c];
     double f = phi > 0 ? 1.0 : 0.0;
     if (const embedded::BandPoint* bp = geo.centres.at(c)) {
       double width = 0;
       for (int d = 0; d < DIM; ++d) width += std::abs(bp->normal[d]) * g.dx[d];
-      if (width > 0 && std::abs(phi) < width) f = std::clamp(0.5 + phi / width, 0.0, 1.0);
+      if (width > 0 && std::abs(phi) < width) {
+        const double plane = 0.5 + phi / width;
+        f = std::clamp(plane, 0.0, 1.0);
+        // d phi / dt = -u . n at a fixed point (n: solid -> fluid), while the plane cuts the cell.
+        if (moving && plane > 0.0 && plane < 1.0 && bp->face >= 0)
+          e.fluid_fraction_rate[c] = -embedded::dot(embedded::face_velocity(s, bp->face, bp->bary), bp->normal) / width;
+      }
     }
     e.fluid_fraction[c] = f;
   }
@@ -247,7 +259,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       }
       EmbeddedState st =
           to_embedded_state<DIM>(g_, surface_, geo_, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
-      if (conservative_) add_fluid_fractions<DIM>(g_, geo_, st);
+      if (conservative_) add_fluid_fractions<DIM>(g_, surface_, geo_, st);
       st.own_ghosts = st.ghosts.size();
       inner_->set_embedded(std::move(st), second_order_);
     }

@@ -82,6 +82,9 @@ struct EmbeddedState {
   // point with its normal, docs/methods.md §5.8); computed for embedded.conservative only
   // (add_fluid_fractions), on one rank. Empty: not computed.
   std::vector<double> fluid_fraction;
+  // And its rate of change as the surface moves at its velocities [1/s] (d/dt of the plane's fraction:
+  // -(u . n) / sum_d |n_d| dx_d where the plane cuts the cell, else 0); empty where no wall moves.
+  std::vector<double> fluid_fraction_rate;
 };
 
 }  // namespace cosim::fluid

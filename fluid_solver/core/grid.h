@@ -66,6 +66,13 @@ struct Grid {
     }
     return true;
   }
+  // Whether padded cell p is one of the block's own interior cells (no ghost layer).
+  bool interior(std::size_t p) const {
+    const std::array<int, 3> g = global_ijk(p);
+    for (int d = 0; d < DIM; ++d)
+      if (g[d] < first[d] || g[d] >= first[d] + n[d]) return false;
+    return true;
+  }
   double cell_volume() const {
     double v = 1;
     for (int d = 0; d < DIM; ++d) v *= dx[d];

@@ -128,11 +128,13 @@ class Solver final : public FluidSimulation {
       if (state.fluid_fraction.size() != state.kind.size())
         throw std::invalid_argument("embedded.conservative: the geometry gave no fluid fractions of the cells");
       const bool first = !emb_.active && !restored;
-      std::vector<std::uint8_t> before = std::move(emb_.kind);
+      const double elapsed = volumes_elapsed_;
+      EmbeddedState old = std::move(emb_);
+      vfrac_old_.swap(vfrac_);
       emb_ = std::move(state);
       fluid_volumes();
       if (first) contents_from_densities();
-      else if (changed) redistribute_changed_cells(before);  // covered and uncovered cells
+      else if (changed) redistribute_changed_cells(old, elapsed);  // covered and uncovered cells
     } else {
       emb_ = std::move(state);
     }
@@ -209,18 +211,21 @@ class Solver final : public FluidSimulation {
     // ready. The last stage applies drag and heat exchange to each row it finishes, before its primitives.
     const bool fuse = !emb_.active;
     const double exchange_dt = NP == 2 && exchange_changes_state() ? dt : 0.0;
+    // Each stage's state and the state it makes have their times (fractions of the step: the stage's input, its
+    // output), for the fluid volumes of moving walls (embedded.conservative).
     if (scene_.integrator == TimeIntegrator::RK2) {
-      stage(dt, 0.0, 1.0, fuse);
-      stage(dt, 0.5, 0.5, fuse, exchange_dt);
+      stage(dt, 0.0, 1.0, fuse, 0.0, {0.0, 1.0});
+      stage(dt, 0.5, 0.5, fuse, exchange_dt, {1.0, 1.0});
     } else {
-      stage(dt, 0.0, 1.0, fuse);
-      stage(dt, 0.75, 0.25, fuse);
-      stage(dt, 1.0 / 3.0, 2.0 / 3.0, fuse, exchange_dt);
+      stage(dt, 0.0, 1.0, fuse, 0.0, {0.0, 1.0});
+      stage(dt, 0.75, 0.25, fuse, 0.0, {1.0, 0.5});
+      stage(dt, 1.0 / 3.0, 2.0 / 3.0, fuse, exchange_dt, {0.5, 1.0});
     }
     if (emb_.active) {
       PassClock clk(pass_acc(Pass::Boundaries));
       store_ghost_states();
     }
+    volumes_elapsed_ += dt;
     for (std::size_t i = 0; i < inflow_.size(); ++i) inflow_[i] += step_inflow_[i];
     for (int k = 0; k < NP; ++k) mass_by_walls_[k] += step_wall_mass_[k];
     for (std::size_t i = 0; i < wall_.size(); ++i) wall_[i] += step_wall_[i];
@@ -268,7 +273,10 @@ class Solver final : public FluidSimulation {
   }
 
   // solver_stage.h: one Runge-Kutta stage, the update of a finished row, the deferred primitives.
-  void stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt = 0.0);
+  struct StageTimes {
+    double in = 0.0, out = 0.0;  // fractions of the step
+  };
+  void stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt, StageTimes times);
   void exchange_far_cells();
   void update_row(Scratch& sc, std::size_t base, int len, double dt, double a, double b, bool fuse_primitives,
                   double exchange_dt);
@@ -422,8 +430,10 @@ class Solver final : public FluidSimulation {
   template <int D>
   void wall_face_row(Scratch& sc, std::size_t base, int len, double* buf, std::size_t flen, bool count_low,
                      bool count_high) const;
-  void redistribute_changed_cells(std::vector<std::uint8_t>& before);
+  void redistribute_changed_cells(EmbeddedState& old, double elapsed);
+  void redistribute_by_box(std::vector<std::uint8_t>& before);
   void fluid_volumes();
+  void volumes_at(double elapsed);
   static constexpr double kMinFluidVolume = 0.5;  // a flow cell's centre is in the fluid: 1/2 for a plane
   void contents_from_densities();
   void contents_to_densities(std::size_t base, int len, bool to_density);
@@ -465,6 +475,11 @@ class Solver final : public FluidSimulation {
   // Per padded cell: the fluid volume a flow cell stands for over the cell's volume (its own fluid fraction and a
   // share of the fluid in the ghost cells next to it), and scratch for the shares.
   std::vector<double> vfrac_, shares_;
+  std::vector<double> vraw_, vrate_;  // the fluid volumes at the geometry's time (unclamped) and their rates [1/s]
+  double volumes_elapsed_ = 0.0;      // the time since that geometry's (the steps taken on it)
+  std::vector<double> vfrac_old_, given_, shares_old_;  // the last geometry's volumes; scratch of the redistribution
+  // Marks of the redistribution in the last geometry's categories (not CellKind values).
+  static constexpr std::uint8_t kTaking = 250, kGiven = 251;
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)
   std::vector<double> far_send_, far_recv_;         // far cells' primitives to and from the other blocks
   bool wall_second_order_ = true;

@@ -87,22 +87,49 @@ inline void Solver<DIM, NP, FK>::contents_to_densities(std::size_t base, int len
 
 // The fluid volume each flow cell stands for (vfrac_, in cell volumes; eq. 5.8.2): its own fluid fraction and, of
 // every ghost or solid-cut cell next to it across a wall face, that cell's fluid fraction shared equally among its
-// flow neighbours; at least kMinFluidVolume. The other cells hold densities (ghost states): 1.
+// flow neighbours; at least kMinFluidVolume. The other cells hold densities (ghost states): 1. Where walls move, the
+// same sum of the fractions' rates (vrate_): a step's stages see the volumes of their own times (volumes_at).
 template <int DIM, int NP, FluxKind FK>
 inline void Solver<DIM, NP, FK>::fluid_volumes() {
   const std::vector<double>& ff = emb_.fluid_fraction;
+  const std::vector<double>& rate = emb_.fluid_fraction_rate;
+  const bool moving = !rate.empty();
+  vraw_.resize(g_.total);
   vfrac_.resize(g_.total);
   shares_.resize(g_.total);
-  for (std::size_t c = 0; c < g_.total; ++c) vfrac_[c] = is_flow_cell(emb_.kind[c]) ? ff[c] : 1.0;
+  if (moving) vrate_.assign(g_.total, 0.0);
+  else vrate_.clear();
+  for (std::size_t c = 0; c < g_.total; ++c) {
+    const bool flow = is_flow_cell(emb_.kind[c]);
+    vraw_[c] = flow ? ff[c] : 1.0;
+    if (moving && flow) vrate_[c] = rate[c];
+  }
   for (const GhostRecord& gr : emb_.ghosts) shares_[gr.cell] = 0.0;
   for (int D = 0; D < DIM; ++D)
     for (const WallFace& f : emb_.faces[D]) shares_[f.solid_cell] = 0.0;
+  // (A wall face of a ghost layer's cell, where a body meets the domain's edge, holds no fluid: the layer is not
+  // the flow's.)
   for (int D = 0; D < DIM; ++D)
-    for (const WallFace& f : emb_.faces[D]) shares_[f.solid_cell] += 1.0;
+    for (const WallFace& f : emb_.faces[D])
+      if (g_.interior(f.fluid_cell)) shares_[f.solid_cell] += 1.0;
   for (int D = 0; D < DIM; ++D)
-    for (const WallFace& f : emb_.faces[D]) vfrac_[f.fluid_cell] += ff[f.solid_cell] / shares_[f.solid_cell];
+    for (const WallFace& f : emb_.faces[D]) {
+      if (!g_.interior(f.fluid_cell)) continue;
+      vraw_[f.fluid_cell] += ff[f.solid_cell] / shares_[f.solid_cell];
+      if (moving) vrate_[f.fluid_cell] += rate[f.solid_cell] / shares_[f.solid_cell];
+    }
+  volumes_elapsed_ = 0.0;
+  volumes_at(0.0);
+}
+
+// The flow cells' fluid volumes a time `elapsed` after the geometry's (the geometric conservation of a moving wall:
+// a Runge-Kutta stage's state is that of its own time, a content over the volume the wall has swept by then).
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::volumes_at(double elapsed) {
+  const bool moving = !vrate_.empty();
   for (std::size_t c = 0; c < g_.total; ++c)
-    if (is_flow_cell(emb_.kind[c])) vfrac_[c] = std::max(vfrac_[c], kMinFluidVolume);
+    vfrac_[c] =
+        is_flow_cell(emb_.kind[c]) ? std::max(vraw_[c] + (moving ? elapsed * vrate_[c] : 0.0), kMinFluidVolume) : 1.0;
   primitives_valid_ = false;
 }
 
@@ -119,14 +146,81 @@ inline void Solver<DIM, NP, FK>::contents_from_densities() {
   U0_ = U_;
 }
 
-// The cells whose category changed from `before` to emb_.kind (eq. 5.8.3), within kRedistributionReach: an
+// The cells whose category changed from the last geometry `old` to emb_ (eq. 5.8.3). A cell the body uncovered was
+// a ghost whose fluid part its flow neighbours across wall faces held (eq. 5.8.2, their share of it at the time
+// `elapsed` the state has reached): each gives it back, that share of its content over its fluid volume, so the
+// fluid keeps its density where it was. A cell the body covered gives its content to the flow cells that now hold
+// its fluid part, equally (the shares of eq. 5.8.2). Cells with no such neighbour (a corner) go to redistribute_by_box.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::redistribute_changed_cells(EmbeddedState& old, double elapsed) {
+  std::vector<std::uint8_t>& before = old.kind;  // marks the uncovered cells that hold their content
+  const auto content_vars = [&](auto each) {
+    for (int v = 0; v < ncons_; ++v)
+      if (NP == 1 || v != Lay::alpha) each(U_.var(v));
+  };
+  const auto uncovered = [&](std::size_t c) { return !is_flow_cell(before[c]) && is_flow_cell(emb_.kind[c]); };
+  const auto covered = [&](std::size_t c) { return is_flow_cell(before[c]) && !is_flow_cell(emb_.kind[c]); };
+  bool any = false;
+  for (std::size_t c = 0; c < g_.total && !any; ++c) any = uncovered(c) || covered(c);
+  if (!any) return;
+  // The old shares: how many flow cells held each old ghost's fluid part, and that part at `elapsed`.
+  given_.assign(g_.total, 0.0);
+  std::vector<double>& held_by = shares_old_;
+  held_by.assign(g_.total, 0.0);
+  const auto holds = [&](const WallFace& f) { return g_.interior(f.fluid_cell); };
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : old.faces[D])
+      if (holds(f)) held_by[f.solid_cell] += 1.0;
+  const auto part = [&](std::size_t G) {
+    const double rate = old.fluid_fraction_rate.empty() ? 0.0 : old.fluid_fraction_rate[G];
+    return std::max(old.fluid_fraction[G] + elapsed * rate, 0.0) / held_by[G];
+  };
+  // Uncovered: from the original contents of the cells that held them, then those cells keep the rest.
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : old.faces[D])
+      if (holds(f) && uncovered(f.solid_cell)) given_[f.fluid_cell] += part(f.solid_cell) / vfrac_old_[f.fluid_cell];
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : old.faces[D])
+      if (holds(f) && uncovered(f.solid_cell) && before[f.solid_cell] != kTaking) {
+        content_vars([&](double* u) { u[f.solid_cell] = 0.0; });
+        before[f.solid_cell] = kTaking;
+      }
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : old.faces[D]) {
+      if (!holds(f) || before[f.solid_cell] != kTaking) continue;
+      const double w = part(f.solid_cell) / vfrac_old_[f.fluid_cell] / std::max(given_[f.fluid_cell], 1.0);
+      content_vars([&](double* u) { u[f.solid_cell] += w * u[f.fluid_cell]; });
+    }
+  for (std::size_t c = 0; c < g_.total; ++c)
+    if (given_[c] > 0.0) {
+      const double keep = 1.0 - std::min(given_[c], 1.0);
+      content_vars([&](double* u) { u[c] *= keep; });
+    }
+  for (std::size_t c = 0; c < g_.total; ++c)
+    if (before[c] == kTaking) before[c] = static_cast<std::uint8_t>(CellKind::Fluid);
+  // Covered: to the flow cells across the new wall faces, equally (shares_: their count, from fluid_volumes).
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : emb_.faces[D])
+      if (holds(f) && covered(f.solid_cell)) {
+        const double w = 1.0 / shares_[f.solid_cell];
+        content_vars([&](double* u) { u[f.fluid_cell] += w * u[f.solid_cell]; });
+      }
+  for (int D = 0; D < DIM; ++D)
+    for (const WallFace& f : emb_.faces[D])
+      if (holds(f) && covered(f.solid_cell)) before[f.solid_cell] = kGiven;
+  redistribute_by_box(before);
+}
+
+// The cells whose category changed from `before` to emb_.kind that redistribute_changed_cells left (kGiven: done),
+// within kRedistributionReach: an
+
 // uncovered cell takes the mean density of itself and the flow cells around it times its fluid volume, each of
 // them giving the same fraction of every variable (so their velocities, temperatures and phase ratios stay); then
 // a covered cell gives its content to the flow cells around it in proportion to their fluid volumes. What cannot
 // be placed (no flow cell in reach) goes into the cells account. `before` is scratch: the uncovered cells are
 // marked as flow cells once they hold their content.
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::redistribute_changed_cells(std::vector<std::uint8_t>& before) {
+inline void Solver<DIM, NP, FK>::redistribute_by_box(std::vector<std::uint8_t>& before) {
   constexpr int r = embedded::kRedistributionReach;
   constexpr int side = 2 * r + 1;
   constexpr int box = DIM == 1 ? side : DIM == 2 ? side * side : side * side * side;
@@ -159,7 +253,7 @@ inline void Solver<DIM, NP, FK>::redistribute_changed_cells(std::vector<std::uin
         for (int i = 0; i < g_.n[0]; ++i) {
           const std::size_t c = g_.index(i, j, k);
           const bool now = is_flow_cell(emb_.kind[c]), was = is_flow_cell(before[c]);
-          if (now == was || now != (pass == 0)) continue;
+          if (before[c] == kGiven || now == was || now != (pass == 0)) continue;
           if (now) {  // uncovered: U holds its last ghost state (densities)
             const int count = around(i, j, k, [&](std::size_t n) { return is_flow_cell(before[n]); });
             double vsum = vfrac_[c];

@@ -9,8 +9,12 @@ namespace cosim::fluid {
 // each cell row that the y sweep (x in 1D) completes goes to update_row; exchange_dt > 0: the step's drag and
 // heat exchange over that time follow in each row (the last stage).
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt) {
+inline void Solver<DIM, NP, FK>::stage(double dt, double a, double b, bool fuse_primitives, double exchange_dt,
+                                       StageTimes times) {
+  const bool moving_volumes = conservative_ && !vrate_.empty();
+  if (moving_volumes && times.in != 0.0) volumes_at(volumes_elapsed_ + times.in * dt);
   compute_primitives();
+  if (moving_volumes) volumes_at(volumes_elapsed_ + times.out * dt);  // the contents it makes (its relaxations)
   primitives_valid_ = primitives_bad_ = false;
   {
     PassClock clk(pass_acc(Pass::Boundaries));

@@ -42,6 +42,16 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
 
   coupling::FluidSamples receive_faces(const coupling::Faces& faces, double dt) override {
     build(faces, dt);
+    // embedded.conservative: the cells hold contents, and a content's density is over the fluid volume of the
+    // geometry it belongs to. The state is at t^n, where the new faces place the body, so the solver takes this
+    // geometry's volumes (and the cells it covered or uncovered) before the samples read the cells; the states'
+    // wall velocities follow in apply_states. Sampled over the last cycle's volumes, a wall cell's pressure lagged
+    // by one step's wall motion (p dV / V: +1.8% at 15 m/s, 160 cells) and pumped energy into the piston.
+    if (sim_.scene().embedded.conservative && !on_block_) {
+      EmbeddedState es = to_embedded_state<DIM>(g_, surface_.surface, geo_);
+      add_fluid_fractions<DIM>(g_, surface_.surface, geo_, es);
+      sim_.set_embedded(std::move(es), second_order_);
+    }
     interface::SampleOptions so;
     so.extrapolate_velocity = wall_velocity_;
     // On blocks: each face sampled by the block holding its centre, the samples merged on every block.
@@ -131,7 +141,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     };
     if (on_block_) return sim_.set_embedded(on_block_->state(records), second_order_);
     EmbeddedState es = records(g_, geo_);
-    if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g_, geo_, es);
+    if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g_, surface_.surface, geo_, es);
     sim_.set_embedded(std::move(es), second_order_);
   }
 
