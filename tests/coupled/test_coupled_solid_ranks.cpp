@@ -3,10 +3,13 @@
 // snapshots and the interface history equal the one-rank run's bit for bit: the piston on (fluid, solid) ranks
 // (1, 2), (3, 2) and (4, 1), the modified Sod problem (Robin and characteristic conditions), the steel panel and the
 // tungsten blast at small sizes; a set written on (1, 1) restarts on (2, 2) and one written on (2, 2) on (1, 1); a
-// stopped solid rank ends the run, named in run_summary.json. The solid's summary proves the ranks were real.
+// stopped or killed solid rank ends the run, named in run_summary.json. The solid's summary proves the ranks were real.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/types.h>
 
 #include <chrono>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -139,25 +142,58 @@ TEST(CoupledSolidRanks, CosimCheckStatesTheLayoutAndRefusesMoreRanksThanElements
   EXPECT_NE(log.find("9 parts of a mesh of 8 elements: at least one element per part"), std::string::npos) << log;
 }
 
-// SIGSTOP of one solid rank of 2 in a coupled run (silent, not dead): the other rank's watchdog notices, the solid
-// ends with code 5, the coupler stops the fluid, and run_summary.json names the solid and the silent rank, all within
-// 5 s of the stop; no process of the run is left.
-TEST(CoupledSolidRanks, AStoppedSolidRankEndsTheCoupledRunNamingTheRank) {
-  const fs::path out = run_dir("solid_ranks_stopped");
+namespace {
+
+// The process of solid rank `rank` of the run in `out` (its MPI environment says which), or 0.
+pid_t solid_rank_process(const fs::path& out, int rank) {
+  const std::string cmd = "pgrep -f '^" + bin("solid_solver").string() + " .*--out " + (out / "solid").string() + " '";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return 0;
+  pid_t found = 0;
+  const std::string key = std::string(1, '\0') + "OMPI_COMM_WORLD_RANK=" + std::to_string(rank) + '\0';
+  for (long pid; std::fscanf(p, "%ld", &pid) == 1;)
+    if ((std::string(1, '\0') + read_text("/proc/" + std::to_string(pid) + "/environ")).find(key) != std::string::npos)
+      found = static_cast<pid_t>(pid);
+  ::pclose(p);
+  return found;
+}
+
+// The coupled piston with its solid on 2 ranks, solid rank `rank` sent `signal` once the solid's first snapshot is
+// written: cosim's exit code and the seconds from the signal to the end of the run.
+std::pair<int, double> signal_a_solid_rank(const fs::path& out, int rank, int signal) {
   std::chrono::steady_clock::time_point sent_at;
-  std::thread stopper([&] {
+  std::thread sender([&] {
     for (int i = 0; i < 600; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
       if (fs::exists(out / "solid" / "solid_000001.h5")) break;
     }
     sent_at = std::chrono::steady_clock::now();
-    const std::string cmd = "pkill -STOP -n -f 'solid_solve[r] .*--out " + (out / "solid").string() + " '";
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    const pid_t pid = solid_rank_process(out, rank);
+    ASSERT_GT(pid, 0) << "no process of solid rank " << rank;
+    EXPECT_EQ(::kill(pid, signal), 0);
   });
   const int rc = cosim_run(scene_file("piston_2d"), out, "--solid-ranks 2 --set coupling.output.interval=0.01");
   const auto ended = std::chrono::steady_clock::now();
-  stopper.join();
-  const double after_stop = std::chrono::duration<double>(ended - sent_at).count();
+  sender.join();
+  return {rc, std::chrono::duration<double>(ended - sent_at).count()};
+}
+
+// No process of the run in `out` is left.
+void expect_nothing_left(const fs::path& out) {
+  for (const char* p : {"fluid_solve[r]", "solid_solve[r]", "couple[r]"})
+    EXPECT_NE(std::system(("pgrep -f '" + std::string(p) + " .*" + out.string() + "' > /dev/null").c_str()), 0)
+        << p << " was left behind";
+}
+
+}  // namespace
+
+// SIGSTOP of solid rank 0 of 2 in a coupled run (silent, not dead; the rank that holds the coupler's connection):
+// rank 1's watchdog notices, the solid ends with code 5, the coupler stops the fluid, and run_summary.json names the
+// solid and rank 0, all within 5 s of the stop (rank 0, resumed as the run ends, does not blame rank 1); no process
+// of the run is left.
+TEST(CoupledSolidRanks, AStoppedSolidRankEndsTheCoupledRunNamingTheRank) {
+  const fs::path out = run_dir("solid_ranks_stopped");
+  const auto [rc, after_stop] = signal_a_solid_rank(out, 0, SIGSTOP);
   EXPECT_NE(rc, 0) << run_logs(out);
   EXPECT_LT(after_stop, 5.0) << run_logs(out);
   const nlohmann::json s = nlohmann::json::parse(read_text(out / "run_summary.json"));
@@ -165,16 +201,30 @@ TEST(CoupledSolidRanks, AStoppedSolidRankEndsTheCoupledRunNamingTheRank) {
   const nlohmann::json& f = s["failed_process"];
   EXPECT_EQ(f["name"].get<std::string>(), "solid") << s.dump(2);
   ASSERT_TRUE(f.contains("rank")) << s.dump(2);
-  const int silent = f["rank"].get<int>();
-  EXPECT_TRUE(silent == 0 || silent == 1) << s.dump(2);
-  EXPECT_EQ(f["noticed_by"].get<int>(), 1 - silent) << s.dump(2);
+  EXPECT_EQ(f["rank"].get<int>(), 0) << s.dump(2);
+  EXPECT_EQ(f["noticed_by"].get<int>(), 1) << s.dump(2);
   EXPECT_EQ(f["ranks"].get<int>(), 2) << s.dump(2);
-  EXPECT_NE(f["error"].get<std::string>().find("rank " + std::to_string(silent) + " of 2 has been silent"),
-            std::string::npos)
-      << s.dump(2);
-  for (const char* p : {"fluid_solve[r]", "solid_solve[r]", "couple[r]"})
-    EXPECT_NE(std::system(("pgrep -f '" + std::string(p) + " .*" + out.string() + "' > /dev/null").c_str()), 0)
-        << p << " was left behind";
-  std::printf("[ measured ] one of 2 coupled solid ranks stopped: the run ended %.2f s after the stop (rank %d)\n",
-              after_stop, silent);
+  EXPECT_NE(f["error"].get<std::string>().find("rank 0 of 2 has been silent"), std::string::npos) << s.dump(2);
+  expect_nothing_left(out);
+  std::printf("[ measured ] solid rank 0 of 2 stopped in a coupled run: the run ended %.2f s after the stop\n",
+              after_stop);
+}
+
+// SIGKILL of solid rank 1 of 2: mpirun ends the other, the coupler stops the fluid, and run_summary.json names the
+// solid and rank 1 (from mpirun's line in solid.log: no rank was left to write a summary) within 5 s.
+TEST(CoupledSolidRanks, AKilledSolidRankEndsTheCoupledRunNamingTheRank) {
+  const fs::path out = run_dir("solid_ranks_killed");
+  const auto [rc, after_kill] = signal_a_solid_rank(out, 1, SIGKILL);
+  EXPECT_NE(rc, 0) << run_logs(out);
+  EXPECT_LT(after_kill, 5.0) << run_logs(out);
+  const nlohmann::json s = nlohmann::json::parse(read_text(out / "run_summary.json"));
+  EXPECT_EQ(s["status"].get<std::string>(), "failed") << s.dump(2);
+  const nlohmann::json& f = s["failed_process"];
+  EXPECT_EQ(f["name"].get<std::string>(), "solid") << s.dump(2);
+  ASSERT_TRUE(f.contains("rank")) << s.dump(2);
+  EXPECT_EQ(f["rank"].get<int>(), 1) << s.dump(2);
+  EXPECT_NE(f["error"].get<std::string>().find("exited on signal 9"), std::string::npos) << s.dump(2);
+  expect_nothing_left(out);
+  std::printf("[ measured ] solid rank 1 of 2 killed in a coupled run: the run ended %.2f s after the kill\n",
+              after_kill);
 }
