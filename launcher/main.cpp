@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
                   "MPI ranks of the fluid (default: the scene's launcher.fluid_ranks, else 1)")
       ->check(CLI::PositiveNumber);
   run->add_option("--solid-ranks", o.solid_ranks,
-                  "MPI ranks of the solid (a solid-only scene; default: the scene's launcher.solid_ranks, else 1)")
+                  "MPI ranks of the solid (solid-only or coupled; default: the scene's launcher.solid_ranks, else 1)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--quiet", o.quiet, "no progress line");
   run->add_option("--restart", o.restart,

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -23,6 +24,23 @@ nlohmann::json read_json(const std::filesystem::path& p) {
   try {
     return nlohmann::json::parse(in);
   } catch (const std::exception&) { return nullptr; }
+}
+
+// A rank that mpirun saw end on a signal (killed, crashed), from its line in the solver's log ("mpirun noticed that
+// process rank 1 with PID 4242 on node n1 exited on signal 9 (Killed)."): the rank and that line, or rank -1.
+std::pair<int, std::string> rank_ended_by_signal(const std::filesystem::path& log) {
+  std::istringstream lines(tail(log, 40));
+  const std::string mark = "mpirun noticed that process rank ";
+  for (std::string l; std::getline(lines, l);) {
+    const std::size_t at = l.find(mark);
+    if (at == std::string::npos || l.find("exited on signal", at) == std::string::npos) continue;
+    int rank = -1;
+    if (std::sscanf(l.c_str() + at + mark.size(), "%d", &rank) != 1) continue;
+    std::string what = l.substr(at);
+    while (!what.empty() && (what.back() == ' ' || what.back() == '.')) what.pop_back();
+    return {rank, what};
+  }
+  return {-1, ""};
 }
 
 // The attempts of run_history.json; a run directory written before it existed: its run_summary.json as attempt 1.
@@ -180,6 +198,9 @@ void write_run_summary(const std::filesystem::path& out, const RunEnd& end, cons
         f["ranks"] = own["parallel"].value("ranks", 0);
         if (own["parallel"].contains("noticed_by")) f["noticed_by"] = own["parallel"]["noticed_by"];
         f["error"] = own.value("error", "");
+      } else if (const auto [rank, line] = rank_ended_by_signal(end.failed->log); rank >= 0) {
+        f["rank"] = rank;  // no rank was left to write a summary
+        f["error"] = line;
       }
       j["failed_process"] = f;
     }

@@ -72,11 +72,8 @@ std::optional<ScenePlan> read_plan(const LaunchOptions& opt) {
     return std::nullopt;
   }
   if (eff.solid_ranks == 0) eff.solid_ranks = 1;
-  if (eff.solid_ranks > 1 && plan.kind != RunKind::SolidOnly) {
-    std::cerr << fmt::format(
-        "cosim: {} solid ranks: a {} run has one solid rank for now (the coupler serves one solid process); "
-        "a solid-only scene runs on several\n",
-        eff.solid_ranks, kind_name(plan.kind));
+  if (eff.solid_ranks > 1 && !plan.has_solid()) {
+    std::cerr << fmt::format("cosim: {} solid ranks: a {} run has no solid\n", eff.solid_ranks, kind_name(plan.kind));
     return std::nullopt;
   }
   for (const auto& [what, cmd] : {std::pair<const char*, const std::string&>{"the fluid command", eff.fluid_cmd},

@@ -73,7 +73,7 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 
-SolidRun prepare_solid_run(const RunOptions& opt) {
+SolidRun prepare_solid_run(const RunOptions& opt, bool make_output) {
   SolidRun r;
   auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
   if (!loaded) return r;
@@ -87,7 +87,8 @@ SolidRun prepare_solid_run(const RunOptions& opt) {
   } catch (const std::exception& e) {
     spdlog::error("{}: cannot set up the solid solver: {}", opt.scene_name(), e.what());
   }
-  if (r.sim && !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
+  if (r.sim && make_output &&
+      !app::make_output_directory(opt.out_dir)) {  // only for a run that can start: no empty folders
     r.sim.reset();
     r.exit_code = 4;
   }
@@ -124,15 +125,7 @@ int run_solid(const RunOptions& opt, const parallel::MpiSession& mpi) {
     }
     return 0;
   }
-  if (opt.coupled()) {
-    if (mpi.size() == 1) return run_solid_coupled(opt);
-    if (mpi.rank() == 0)
-      spdlog::error(
-          "{}: a coupled solid runs on one rank for now ({} ranks started): start solid_solver without mpirun "
-          "(cosim run: leave --solid-ranks and launcher.solid_ranks out)",
-          opt.scene_name(), mpi.size());
-    return 2;
-  }
+  if (opt.coupled()) return run_solid_coupled(opt, mpi);
   return run_solid_ranks(opt, mpi);
 }
 

@@ -26,12 +26,12 @@ std::string write_solid_part(const std::filesystem::path& dir, const Simulation&
   return kSolidPart;
 }
 
-SolidRunState read_solid_part(const checkpoint::PartReader& r, Simulation& sim, io::SnapshotSeries& series) {
+SolidRunState read_solid_part(const checkpoint::PartReader& r, Simulation& sim, io::SnapshotSeries* series) {
   SolidRunState run;
   run.cycle = r.integer("cycle");
   run.time = r.scalar("time");
   sim.restore_state(r);
-  checkpoint::resume_series(r, "solid", series);
+  if (series) checkpoint::resume_series(r, "solid", *series);
   const std::vector<double> start = r.doubles("run.start_energy", 4);
   run.start = {start[0], start[1], start[2], start[3]};
   run.last.count = static_cast<int>(r.integer("run.last.count"));

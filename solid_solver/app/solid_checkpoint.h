@@ -29,8 +29,8 @@ struct SolidRunState {
 std::string write_solid_part(const std::filesystem::path& dir, const Simulation& sim, const io::SnapshotSeries& series,
                              const BlockHistory& history, const SolidRunState& run);
 
-// Opens SET/solid.h5, restores the solver and continues `series`; the part stays open for the block history's
-// resume. Throws std::runtime_error naming the file and the entry.
-SolidRunState read_solid_part(const checkpoint::PartReader& part, Simulation& sim, io::SnapshotSeries& series);
+// Restores the solver from SET/solid.h5 and continues `series` (null: a rank that writes no outputs); the part stays
+// open for the block history's resume. Throws std::runtime_error naming the file and the entry.
+SolidRunState read_solid_part(const checkpoint::PartReader& part, Simulation& sim, io::SnapshotSeries* series);
 
 }  // namespace cosim::solid

@@ -68,6 +68,10 @@ class Simulation {
   // and its energy sums the totals, so that rank 0 holds the whole state (snapshots, checkpoints, block history).
   // Without: nothing to do.
   void gather_state();
+  // With rank links (a collective call): every rank's copy of the exterior faces' nodes (x, v) and of the elements
+  // behind them (vol, p, q, c, s) from their owners, so that boundary_faces() and the interface loads computed from
+  // it are on every rank what one rank computes (a coupled run: simulation_loads.cpp). Without: nothing to do.
+  void share_boundary_state();
   // Exterior boundary faces for the coupling protocol, refreshed from the current state (t^n; velocities
   // v^{n-1/2}). The face list is built on the first call.
   const BoundaryFaces& boundary_faces();
@@ -138,6 +142,9 @@ class Simulation {
   double rigid_ie_ = 0.0;  // internal energy of the rigid elements (constant) [J]
   std::vector<int> loaded_nodes_;
   RankLinks* links_ = nullptr;
+  // share_boundary_state(): the exterior faces' nodes and elements (ascending), their owners, a packing buffer.
+  std::vector<int> shared_nodes_, shared_node_owner_, shared_elements_, shared_element_owner_;
+  std::vector<double> shared_buf_;
   std::vector<double> rigid_f_;  // per rigid node, its net force (rigid_node_forces)
   void advance_rigid_bodies(double dt, double t_half, double& ke, double& wb);
 };

@@ -110,8 +110,10 @@ void Simulation::set_face_normal_velocities(const std::vector<double>& u, const 
     }
   }
   iface_.clear();
+  const RankPart* part = links_ ? &links_->part() : nullptr;  // on several ranks, each sets the nodes it owns
   for (int n = 0; n < mesh_.num_nodes; ++n) {
     if (!touched[n] || (st_.bc_mask[n] & kBcRigid)) continue;
+    if (part && part->node_owner[n] != part->rank) continue;
     // Pseudo-inverse over the directions the faces constrain (eigenvalues above 5% of the largest: faces
     // that are nearly parallel constrain one direction, not two). A node of one flat face gets u along n;
     // a corner gets the velocity that meets every face's condition; tangential directions stay free.
@@ -194,6 +196,56 @@ void Simulation::set_face_impedances(const std::vector<double>& z) {
           for (int q = 0; q < 3; ++q) rb.added_Krot[i][j] += XK[i][q] * X[j][q];
         }
     }
+}
+
+void Simulation::share_boundary_state() {
+  if (!links_ || links_->part().ranks == 1) return;
+  const RankPart& part = links_->part();
+  if (!faces_built_) {
+    faces_ = make_boundary_faces(mesh_);
+    faces_built_ = true;
+  }
+  if (shared_nodes_.empty() && faces_.count > 0) {
+    std::vector<char> on_node(mesh_.num_nodes, 0), on_element(mesh_.num_elements, 0);
+    for (int n : faces_.nodes) on_node[n] = 1;
+    for (int z : faces_.element) on_element[z] = 1;
+    for (int n = 0; n < mesh_.num_nodes; ++n)
+      if (on_node[n]) shared_nodes_.push_back(n), shared_node_owner_.push_back(part.node_owner[n]);
+    for (int z = 0; z < mesh_.num_elements; ++z)
+      if (on_element[z]) shared_elements_.push_back(z), shared_element_owner_.push_back(part.element_part[z]);
+  }
+  const int D = mesh_.dim;
+  // Nodes: x and v (2 D values each).
+  shared_buf_.resize(shared_nodes_.size() * 2 * D);
+  for (std::size_t i = 0; i < shared_nodes_.size(); ++i)
+    for (int d = 0; d < D; ++d) {
+      const std::size_t o = static_cast<std::size_t>(shared_nodes_[i]) * D + d;
+      shared_buf_[i * 2 * D + d] = st_.x[o];
+      shared_buf_[i * 2 * D + D + d] = st_.v[o];
+    }
+  links_->gather_owned(shared_buf_, 2 * D, shared_node_owner_, true);
+  for (std::size_t i = 0; i < shared_nodes_.size(); ++i)
+    for (int d = 0; d < D; ++d) {
+      const std::size_t o = static_cast<std::size_t>(shared_nodes_[i]) * D + d;
+      st_.x[o] = shared_buf_[i * 2 * D + d];
+      st_.v[o] = shared_buf_[i * 2 * D + D + d];
+    }
+  // Elements: vol, p, q, c and the 6 deviatoric stresses (10 values each).
+  constexpr int E = 10;
+  shared_buf_.resize(shared_elements_.size() * E);
+  for (std::size_t i = 0; i < shared_elements_.size(); ++i) {
+    const auto z = static_cast<std::size_t>(shared_elements_[i]);
+    double* b = &shared_buf_[i * E];
+    b[0] = st_.vol[z], b[1] = st_.p[z], b[2] = st_.q[z], b[3] = st_.c[z];
+    for (int k = 0; k < 6; ++k) b[4 + k] = st_.s[z * 6 + k];
+  }
+  links_->gather_owned(shared_buf_, E, shared_element_owner_, true);
+  for (std::size_t i = 0; i < shared_elements_.size(); ++i) {
+    const auto z = static_cast<std::size_t>(shared_elements_[i]);
+    const double* b = &shared_buf_[i * E];
+    st_.vol[z] = b[0], st_.p[z] = b[1], st_.q[z] = b[2], st_.c[z] = b[3];
+    for (int k = 0; k < 6; ++k) st_.s[z * 6 + k] = b[4 + k];
+  }
 }
 
 void Simulation::apply_interface_velocities() {

@@ -1,8 +1,7 @@
 // The real solvers and their coupler under signals: SIGTERM ends a solver waiting on a silent (SIGSTOPped) coupler
 // at once, exit 130 and summary.json status "interrupted"; a killed coupler is seen at once (its connection closes),
-// not after the heartbeat timeout, also by a fluid on 2 ranks (together, one summary); a stopped solver ends `cosim
-// run` within 5 s with the cause in run_summary.json;
-// one run per run directory.
+// not after the heartbeat timeout, also by a fluid or a solid on 2 ranks (together, one summary); a stopped solver ends
+// `cosim run` within 5 s with the cause in run_summary.json; one run per run directory.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -48,8 +47,8 @@ double seconds_until_exit(Child& c, double limit) {
 struct RealRun {
   fs::path dir;
   std::vector<Child> cs;  // coupler, fluid, solid
-  // fluid_ranks > 1: the fluid under mpirun.
-  explicit RealRun(const std::string& name, int fluid_ranks = 1) {
+  // fluid_ranks, solid_ranks > 1: that solver under mpirun.
+  explicit RealRun(const std::string& name, int fluid_ranks = 1, int solid_ranks = 1) {
     dir = test_dir(name);
     const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "configs" / "piston_2d.yaml";
     const std::string ep = "ipc://" + (dir / "c.sock").string();
@@ -58,20 +57,19 @@ struct RealRun {
       a.insert(a.end(), sets.begin(), sets.end());
       return a;
     };
-    std::vector<std::string> fluid;
-    if (fluid_ranks > 1)
-      fluid = {"mpirun", "--allow-run-as-root",      "--oversubscribe", "--bind-to", "none",
-               "-np",    std::to_string(fluid_ranks)};
-    for (const std::string& a :
-         {bin("fluid_solver").string(), scene.string(), std::string("--out"), (dir / "fluid").string(),
-          std::string("--coupler"), ep, std::string("--token"), std::string("tok"), std::string("--quiet")})
-      fluid.push_back(a);
+    const auto solver = [&](const std::string& program, const std::string& out, int ranks) {
+      std::vector<std::string> argv;
+      if (ranks > 1)
+        argv = {"mpirun", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none", "-np", std::to_string(ranks)};
+      for (const std::string& a :
+           {bin(program).string(), scene.string(), std::string("--out"), (dir / out).string(), std::string("--coupler"),
+            ep, std::string("--token"), std::string("tok"), std::string("--quiet")})
+        argv.push_back(a);
+      return with_sets(argv);
+    };
     cs = {child("coupler", with_sets(coupler_args(ep, scene, dir / "coupler")), dir),
-          child("fluid", with_sets(fluid), dir),
-          child("solid",
-                with_sets({bin("solid_solver").string(), scene.string(), "--out", (dir / "solid").string(), "--coupler",
-                           ep, "--token", "tok", "--quiet"}),
-                dir)};
+          child("fluid", solver("fluid_solver", "fluid", fluid_ranks), dir),
+          child("solid", solver("solid_solver", "solid", solid_ranks), dir)};
     for (auto& c : cs) launcher::start(c);
   }
   ::testing::AssertionResult running_coupled() { return ::running_coupled({&cs[0], &cs[1], &cs[2]}, dir); }
@@ -140,6 +138,23 @@ TEST(SolverSignals, AFluidOnTwoRanksSeesItsCouplerDieTogether) {
   EXPECT_LT(waited, 3.0);
   EXPECT_EQ(cs[1].exit_code, 5) << read_file(cs[1].log);
   const nlohmann::json j = r.summary(1);
+  EXPECT_EQ(j["status"], "failed") << j.dump();
+  EXPECT_NE(j.dump().find("closed the connection"), std::string::npos) << j.dump();
+  EXPECT_EQ(j["parallel"]["ranks"].get<int>(), 2) << j.dump();
+  EXPECT_FALSE(j["parallel"].contains("failed_rank")) << j.dump();
+  EXPECT_FALSE(process_with_argument(r.dir.string()));
+}
+
+// The same with the solid on 2 MPI ranks (its rank 0 holds the connection).
+TEST(SolverSignals, ASolidOnTwoRanksSeesItsCouplerDieTogether) {
+  RealRun r("coupler_killed_solid_ranks", 1, 2);
+  ASSERT_TRUE(r.running_coupled());
+  auto& cs = r.cs;
+  const double waited = r.seconds_to_end_after_the_coupler_is_killed();
+  std::printf("the fluid and the solid's 2 ranks ended %.2f s after the coupler was killed\n", waited);
+  EXPECT_LT(waited, 3.0);
+  EXPECT_EQ(cs[2].exit_code, 5) << read_file(cs[2].log);
+  const nlohmann::json j = r.summary(2);
   EXPECT_EQ(j["status"], "failed") << j.dump();
   EXPECT_NE(j.dump().find("closed the connection"), std::string::npos) << j.dump();
   EXPECT_EQ(j["parallel"]["ranks"].get<int>(), 2) << j.dump();

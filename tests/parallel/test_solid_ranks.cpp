@@ -236,8 +236,8 @@ TEST(SolidRanks, AStoppedRankEndsTheRunWithinFiveSeconds) {
 }
 
 // cosim run --solid-ranks N starts a solid-only scene on N ranks (mpirun before solid_solver in launch.json) with the
-// one-rank run's snapshots; a coupled scene is refused before anything starts, and so is solid_solver on 2 ranks
-// with a coupler address.
+// one-rank run's snapshots; a coupled scene whose solid has ALE blocks (the conforming panel) is refused before
+// anything starts, and so is solid_solver on 2 ranks with a coupler address on that scene (before it connects).
 TEST(SolidRanks, CosimRunStartsTheSolidOnRanks) {
   const std::string cosim = std::string(COSIM_BINARY_DIR) + "/bin/cosim";
   if (!std::filesystem::exists(cosim)) GTEST_SKIP() << "cosim is not built (COSIM_BUILD_COUPLING off)";
@@ -254,16 +254,23 @@ TEST(SolidRanks, CosimRunStartsTheSolidOnRanks) {
   EXPECT_EQ(summary_of(two / "solid")["parallel"]["ranks"].get<int>(), 2);
   const nlohmann::json launch = nlohmann::json::parse(read_text(two / "launch.json"));
   EXPECT_EQ(launch["commands"]["solid"][0].get<std::string>(), "mpirun");
-  const auto refused = scratch_path("cosim_solid_ranks_coupled");
-  const std::string coupled = cosim + " run " + scene_path("piston_2d") + " --quiet --solid-ranks 2 --out " +
-                              refused.string() + " > " + refused.string() + ".log 2>&1";
+  const auto refused = scratch_path("cosim_solid_ranks_coupled_ale");
+  std::filesystem::remove_all(refused);
+  const std::string coupled = cosim + " run " + scene_path("shock_panel_2d_conforming") +
+                              " --quiet --solid-ranks 2 --out " + refused.string() + " > " + refused.string() +
+                              ".log 2>&1";
   EXPECT_EQ(WEXITSTATUS(std::system(coupled.c_str())), 2);
-  EXPECT_NE(read_text(refused.string() + ".log").find("2 solid ranks: a coupled run has one solid rank for now"),
-            std::string::npos)
-      << read_text(refused.string() + ".log");
+  const std::string log = read_text(refused.string() + ".log");
+  EXPECT_NE(log.find("2 ranks: ALE blocks (solid.ale.blocks) run on one rank only"), std::string::npos) << log;
+  EXPECT_NE(log.find("nothing was started"), std::string::npos) << log;
+  EXPECT_FALSE(std::filesystem::exists(refused / "solid")) << log;
   // solid_solver itself, on 2 ranks with a coupler address: refused before it connects.
   const auto direct = scratch_path("solid_ranks_coupled_direct");
-  const RankRun r = run_solid_ranks(2, scene_path("piston_2d"), direct, "--coupler ipc:///tmp/nowhere.sock", 60);
+  const RankRun r =
+      run_solid_ranks(2, scene_path("shock_panel_2d_conforming"), direct, "--coupler ipc:///tmp/nowhere.sock", 60);
   EXPECT_EQ(r.code, 2) << r.log;
-  EXPECT_NE(r.log.find("a coupled solid runs on one rank for now (2 ranks started)"), std::string::npos) << r.log;
+  EXPECT_NE(
+      r.log.find("cannot set up the coupled solid on 2 ranks: ALE blocks (solid.ale.blocks) run on one rank only"),
+      std::string::npos)
+      << r.log;
 }

@@ -253,15 +253,7 @@ std::vector<std::string> CartComm::gather_text(const std::string& local, bool to
 }
 
 std::string CartComm::broadcast(const std::string& from_root) const {
-  if (!comm_) return from_root;
-  long n = static_cast<long>(from_root.size());
-  MPI_Request r;
-  MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm_), &r);
-  wait_passively(1, &r);
-  std::string out = rank_ == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
-  MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, as_comm(comm_), &r);
-  wait_passively(1, &r);
-  return out;
+  return comm_ ? detail::broadcast_over(comm_, from_root) : from_root;
 }
 
 void CartComm::barrier() const {

@@ -108,6 +108,10 @@ void GraphComm::sum(std::span<double> values) const {
 
 bool GraphComm::any(bool local) const { return max(local ? 1.0 : 0.0) > 0.0; }
 
+std::string GraphComm::broadcast(const std::string& from_root) const {
+  return comm_ ? detail::broadcast_over(comm_, from_root) : from_root;
+}
+
 void GraphComm::barrier() const {
   if (comm_) detail::barrier_over(comm_);
 }

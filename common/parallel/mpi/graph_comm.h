@@ -36,6 +36,7 @@ class GraphComm {
   double min(double local) const;
   void sum(std::span<double> values) const;  // in place, every rank gets the sums (the order is MPI's)
   bool any(bool local) const;
+  std::string broadcast(const std::string& from_root) const;  // rank 0's text on every rank (every rank calls it)
   void barrier() const;
 
   double halo_bytes() const { return halo_bytes_; }  // sent by exchange() so far

@@ -80,4 +80,17 @@ void barrier_over(void* comm) {
   wait_passively(1, &r);
 }
 
+std::string broadcast_over(void* comm, const std::string& from_root) {
+  int rank = 0;
+  MPI_Comm_rank(as_comm(comm), &rank);
+  long n = static_cast<long>(from_root.size());
+  MPI_Request r;
+  MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm), &r);
+  wait_passively(1, &r);
+  std::string out = rank == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
+  MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, as_comm(comm), &r);
+  wait_passively(1, &r);
+  return out;
+}
+
 }  // namespace cosim::parallel::detail

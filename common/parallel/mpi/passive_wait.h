@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <span>
+#include <string>
 
 namespace cosim::parallel::detail {
 
@@ -15,5 +16,6 @@ void wait_passively(int count, MPI_Request* requests);
 double max_over(void* comm, double local);            // the largest of every rank's `local`
 void sum_over(void* comm, std::span<double> values);  // in place, every rank gets the sums (rank order)
 void barrier_over(void* comm);
+std::string broadcast_over(void* comm, const std::string& from_root);  // rank 0's text on every rank
 
 }  // namespace cosim::parallel::detail

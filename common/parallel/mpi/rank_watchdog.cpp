@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -53,9 +54,13 @@ struct RankWatchdogState {
   void run() {
     std::vector<Clock::time_point> last(static_cast<std::size_t>(size), Clock::now());
     std::vector<char> gone(static_cast<std::size_t>(size), 0);
-    auto next_beat = Clock::now();
+    auto next_beat = Clock::now(), previous = Clock::now();
     while (!stop) {
       const auto now = Clock::now();
+      // This thread did not run for a while: this rank was the one stopped (SIGSTOP, then SIGCONT as the run is ended)
+      // or starved. The others' heartbeats of that time are not theirs to miss: they are counted from now.
+      if (now - previous > 2 * kInterval) std::fill(last.begin(), last.end(), now);
+      previous = now;
       if (now >= next_beat) {
         send_all(kBeat);
         next_beat = now + kInterval;
