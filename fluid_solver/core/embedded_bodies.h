@@ -237,6 +237,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     update();
   }
   void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
+  void set_embedded_elapsed(double elapsed) override { inner_->set_embedded_elapsed(elapsed); }
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }
   double geometry_seconds() const { return geometry_seconds_; }

@@ -111,6 +111,9 @@ class FluidSimulation {
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state
   // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
   virtual void set_embedded(EmbeddedState state, bool second_order) = 0;
+  // The state holds the cells as `elapsed` after the embedded geometry just set (a restored coupled cycle: its state
+  // is after the step on that geometry); embedded.conservative reads its contents over the volumes of that time.
+  virtual void set_embedded_elapsed(double elapsed) = 0;
   virtual const EmbeddedState& embedded() const = 0;
   // CellKind of every interior cell (i fastest) as numbers, for output.
   virtual std::vector<double> embedded_categories() const = 0;

@@ -162,6 +162,11 @@ class Solver final : public FluidSimulation {
     }
   }
   const EmbeddedState& embedded() const override { return emb_; }
+  void set_embedded_elapsed(double elapsed) override {
+    if (!conservative_ || !emb_.active) return;
+    volumes_elapsed_ = elapsed;
+    volumes_at(elapsed);
+  }
 
   void set_pass_profiling(bool on) override {
     profiling_ = on;

@@ -84,6 +84,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     build(coupling::from_pb(f), r.scalar("boundary.dt"));
     samples_ = coupling::from_pb(m);
     apply_states(coupling::from_pb(st));
+    sim_.set_embedded_elapsed(dt_);  // the saved cells are after the cycle's step on this geometry
   }
 
   // The embedded geometry of the faces at t^{n+1}, placed back at t^n.

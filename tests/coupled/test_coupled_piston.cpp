@@ -288,11 +288,12 @@ TEST(CoupledPiston, Piston3DAtThePapersResolutionFollowsTheReferences) {
 }
 
 // The conservative embedded boundary (fluid.embedded.conservative, docs/methods.md §5.8) on the heavy piston, three
-// periods: the gas mass of the flow cells changes only by the domain boundary's flux (to 1e-10; the channel's walls
-// let 5e-6 of it through where they meet the piston, none with the default boundary: not understood yet), the
-// fluid's momentum and energy change by exactly that and the walls' exchange (the piston's force and work). The
-// piston stays within 10% of the references (measured: 6.0%, against 0.04% with the default boundary: the reason it
-// is not the default; docs/benchmarks.md, "The conservative embedded boundary").
+// periods: the gas mass of the flow cells changes only by the domain boundary's flux (none: the channel is closed;
+// to 1e-10), the fluid's momentum and energy change by exactly that and the walls' exchange (the piston's force and
+// work), and the piston follows the references as closely as with the default boundary (measured: 0.07% / 0.05%
+// from the gas-inertia ODE / the conforming run, default 0.04% / 0.04%). With the wall cell's volume a step
+// behind the wall (samples over the last geometry's volumes, stages over the step's first) the piston gained 1.4%
+// of its amplitude every half period, 6% in all; with the box redistribution of uncovered cells it lost 1.9%.
 TEST(CoupledPiston, ConservativeWallsKeepTheGasMassAndFollowTheOde) {
   const std::string args = "--set fluid.embedded.conservative=true";
   const Deviation d = full_run_deviation("piston_2d", args, "piston_2d (robin, conservative boundary)");
@@ -318,7 +319,8 @@ TEST(CoupledPiston, ConservativeWallsKeepTheGasMassAndFollowTheOde) {
   EXPECT_LT(std::abs(dm), 1e-10 * m0);
   EXPECT_LT(std::abs(de - wall["energy"].get<double>()), 1e-10 * e0);
   EXPECT_LT(std::abs(dmx - wall["momentum"][0].get<double>()), 1e-10 * m0 * 374.0);
-  EXPECT_LT(d.inertia, 0.1);
-  EXPECT_LT(d.conforming, 0.1);
-  EXPECT_LT(d2.inertia, d.inertia);  // when this fails, the conservative boundary may become the default
+  EXPECT_LT(d.inertia, 0.002);
+  EXPECT_LT(d.conforming, 0.002);
+  EXPECT_LT(d2.inertia, 0.002);
+  EXPECT_LT(std::abs(acc["interface_created_relative"].get<double>()), 1e-3);  // was 1.2% with the lagging volume
 }

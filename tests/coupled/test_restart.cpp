@@ -78,6 +78,16 @@ TEST(Restart, CoupledPistonResumedFromACheckpointIsTheUninterruptedRunBitForBit)
                             "--set coupling.time.end=0.1 --set coupling.checkpoint.interval=0.04", 20);
 }
 
+TEST(Restart, ConservativeBoundaryResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
+  // embedded.conservative: the cells' contents belong to the fluid volumes of the time the state has reached (a step
+  // after the checkpoint's geometry), which the restart restores with the cycle's step; the piston uncovers and
+  // covers cells on both sides after the set (at 0.04 s).
+  expect_restart_reproduces("conservative_piston", "piston_2d",
+                            "--set coupling.time.end=0.06 --set coupling.checkpoint.interval=0.04 "
+                            "--set fluid.embedded.conservative=true",
+                            6);
+}
+
 TEST(Restart, LightPistonResumedFromACheckpointIsTheUninterruptedRunBitForBit) {
   // The light piston is a deformable gas block: nodal state, element history and the Robin impedances.
   expect_restart_reproduces("light_piston", "piston_light_2d",
