@@ -430,7 +430,7 @@ class Solver final : public FluidSimulation {
   // solver_conservative.h: the wall faces' fluxes (conservative: without mass), the wall exchange account, and
   // the contents of the cells a moving body covers or uncovers.
   void content_per_mass(int k, std::size_t c, double* q) const;
-  void wall_face_flux(Scratch& sc, std::size_t fc, double sign, double area, double* buf, std::size_t flen,
+  void wall_face_flux(Scratch& sc, const WallFace& wf, int D, double sign, double area, double* buf, std::size_t flen,
                       int f) const;
   template <int D>
   void wall_face_row(Scratch& sc, std::size_t base, int len, double* buf, std::size_t flen, bool count_low,

@@ -29,20 +29,29 @@ inline void Solver<DIM, NP, FK>::content_per_mass(int k, std::size_t c, double* 
     if (k == 1 && gran_) q[DIM] += W_.var(Lay::pgran)[c];
 }
 
-// One wall face's flux in buf (column f, stride flen) as its flow cell `fc` receives it (sign +1: the flow cell is
-// on the face's high side): conservative, the mass flux of every phase is taken out with the content it carried;
-// either way the flux into the flow cell goes into this thread's wall exchange account (per second).
+// One wall face's flux in buf (column f, stride flen; wf along D) as its flow cell receives it (sign +1: the flow
+// cell is on the face's high side): conservative, no phase's mass crosses it and it keeps the wall's pressure force
+// and work; either way the flux into the flow cell goes into this thread's wall exchange account (per second).
 template <int DIM, int NP, FluxKind FK>
-inline void Solver<DIM, NP, FK>::wall_face_flux(Scratch& sc, std::size_t fc, double sign, double area, double* buf,
-                                                std::size_t flen, int f) const {
+inline void Solver<DIM, NP, FK>::wall_face_flux(Scratch& sc, const WallFace& wf, int D, double sign, double area,
+                                                double* buf, std::size_t flen, int f) const {
+  const std::size_t fc = wf.fluid_cell;
   for (int k = 0; k < NP; ++k) {
     double* mf = buf + fvar_flux(k, 0) * flen + f;
     if (conservative_) {
       double q[DIM + 2];
       content_per_mass(k, fc, q);
       const double m = *mf;
-      for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] -= m * q[d];
-      buf[fvar_flux(k, 1 + DIM) * flen + f] -= m * q[DIM];
+      // Eq. 5.8.1: the mass flux carried the flow's tangential velocity and the wall's normal one (the mirrored
+      // problem's contact moves with the wall); less that, the face's momentum flux along D is the wall's pressure
+      // force (alpha p* per phase), and the wall's work on the flow is that force times u_I.
+      double qn = 0, un = 0;
+      for (int d = 0; d < DIM; ++d) {
+        qn += q[d] * wf.normal[d];
+        un += wf.wall_velocity[d] * wf.normal[d];
+      }
+      for (int d = 0; d < DIM; ++d) buf[fvar_flux(k, 1 + d) * flen + f] -= m * (q[d] - (qn - un) * wf.normal[d]);
+      buf[fvar_flux(k, 1 + DIM) * flen + f] = buf[fvar_flux(k, 1 + D) * flen + f] * wf.wall_velocity[D];
       if constexpr (NP == 2)
         if (k == 1 && gran_) buf[fvar_heat * flen + f] -= m * q[DIM + 1];
       *mf = 0.0;
@@ -66,7 +75,7 @@ inline void Solver<DIM, NP, FK>::wall_face_row(Scratch& sc, std::size_t base, in
   for (; it != faces.end() && high_cell(*it) < base + static_cast<std::size_t>(len); ++it) {
     // On a block of a split mesh the face of a flow cell in a ghost layer is its owner's (Grid::owns).
     const bool counted = (it->solid_on_high_side ? count_low : count_high) && g_.owns(it->fluid_cell);
-    wall_face_flux(sc, it->fluid_cell, it->solid_on_high_side ? -1.0 : 1.0, counted ? area : 0.0, buf, flen,
+    wall_face_flux(sc, *it, D, it->solid_on_high_side ? -1.0 : 1.0, counted ? area : 0.0, buf, flen,
                    static_cast<int>(high_cell(*it) - base));
   }
 }

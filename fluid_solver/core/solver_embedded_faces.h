@@ -154,8 +154,8 @@ inline void Solver<DIM, NP, FK>::blocked_face_fluxes(bool high_side, std::size_t
     }
     compute_faces<D, RM>(1, mini, 0, mini, 1, face1, 1);
     // In the wall exchange account on the block that owns the flow cell (Grid::owns; the x rows reach a ghost cell).
-    const std::size_t fc = high_side ? it->high.fluid_cell : it->low.fluid_cell;
-    wall_face_flux(sc, fc, high_side ? 1.0 : -1.0, g_.owns(fc) ? area : 0.0, face1, 1, 0);
+    const WallFace& wf = high_side ? it->high : it->low;
+    wall_face_flux(sc, wf, D, high_side ? 1.0 : -1.0, g_.owns(wf.fluid_cell) ? area : 0.0, face1, 1, 0);
     for (int v = 0; v < kFaceVars; ++v) buf[v * flen + f] = face1[v];
   }
 }
