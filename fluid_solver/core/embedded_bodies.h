@@ -283,7 +283,10 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
     }
     inner_->set_embedded(on_block_->state([&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
-      return to_embedded_state<DIM>(g, surface_, geo, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      EmbeddedState st =
+          to_embedded_state<DIM>(g, surface_, geo, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      if (conservative_) add_fluid_fractions<DIM>(g, surface_, geo, st);  // over the margin grid
+      return st;
     }),
                          second_order_);
   }
