@@ -182,13 +182,13 @@ TEST(EmbeddedRanks, ASphereMovingAcrossTheRankBoundaryIn3DEqualsTheOneRankRun) {
 
 // A moving sphere's set written on 2 ranks restarts on 3 (and one on 3 on 1): the bodies' vertices go with the state,
 // and the run ends as the uninterrupted one-rank run, bit for bit.
-TEST(EmbeddedRanks, ACheckpointWithAMovingBodyRestartsOnAnotherRankCount) {
-  const std::string scene = cosim::test::write_scene("moving_sphere_restart", kMovingSphere);
-  const std::string sets = "--set fluid.time.end=0.2 --set 'fluid.checkpoint={interval: 0.1, keep: 2}'";
-  const auto whole = scratch_path("emb_restart_whole");
+void expect_restarts_on_other_rank_counts(const std::string& tag_prefix, const std::string& extra) {
+  const std::string scene = cosim::test::write_scene(tag_prefix + "moving_sphere_restart", kMovingSphere);
+  const std::string sets = "--set fluid.time.end=0.2 --set 'fluid.checkpoint={interval: 0.1, keep: 2}'" + extra;
+  const auto whole = scratch_path("emb_restart_" + tag_prefix + "whole");
   ASSERT_EQ(run_fluid_ranks(1, scene, whole, sets).code, 0);
   for (const auto& [from, to] : std::vector<std::pair<int, int>>{{2, 3}, {3, 1}}) {
-    const std::string tag = std::to_string(from) + "_to_" + std::to_string(to);
+    const std::string tag = tag_prefix + std::to_string(from) + "_to_" + std::to_string(to);
     const auto first = scratch_path("emb_restart_" + tag);
     const RankRun a = run_fluid_ranks(from, scene, first, sets + " --set fluid.time.end=0.1");
     ASSERT_EQ(a.code, 0) << a.log;
@@ -201,6 +201,10 @@ TEST(EmbeddedRanks, ACheckpointWithAMovingBodyRestartsOnAnotherRankCount) {
     EXPECT_EQ(series_difference(whole, first), "") << tag;
     EXPECT_EQ(summary_of(first)["parallel"]["ranks"].get<int>(), to) << tag;
   }
+}
+
+TEST(EmbeddedRanks, ACheckpointWithAMovingBodyRestartsOnAnotherRankCount) {
+  expect_restarts_on_other_rank_counts("", "");
 }
 
 // The conservative boundary (fluid.embedded.conservative) with a moving body crossing the block seams (and the
@@ -231,6 +235,12 @@ TEST(EmbeddedRanks, TheConservativeBoundaryWithAMovingSphereIn3DEqualsTheOneRank
                       "--set fluid.embedded.conservative=true",
                       {2},
                       3});
+}
+
+// The same restarts with the conservative boundary: a set's cells hold the contents of its geometry, and the ranks
+// that resume it take the volumes of the ghost layers from their owners before the first step.
+TEST(EmbeddedRanks, TheConservativeBoundaryRestartsOnAnotherRankCount) {
+  expect_restarts_on_other_rank_counts("conservative_", " --set fluid.embedded.conservative=true");
 }
 
 // The reach check: an image point whose stencil lies beyond the cells a block's lattice holds is an error naming
