@@ -38,6 +38,8 @@ class BlockGeometry {
   void set_links(BlockLinks* links) { links_ = links; }
   const Grid<DIM>& grid() const { return g_; }
   const embedded::EmbeddedGeometry<DIM>& geometry() const { return geo_; }
+  // Which faces of the last cut this block samples.
+  const std::vector<char>& sampled() const { return sampled_; }
 
   // Cuts `surface` over the margin grid; with `faces` (kept until the next cut), the faces `choose` picks are this
   // block's to sample: every cell their samples may read beyond the block is planned.

@@ -115,9 +115,16 @@ EmbeddedState restrict_to_block(const EmbeddedState& e, const Grid<DIM>& E, cons
   out.blocked_x = e.blocked_x;  // the margin's answer; the caller's is the whole mesh's (EmbeddedBodiesRun)
   out.far_cells = far_e.size();
   out.kind.resize(block.total);
+  // embedded.conservative: the fluid fractions and their rates of the padded cells too (E's are the whole mesh's).
+  const bool fractions = !e.fluid_fraction.empty(), rates = !e.fluid_fraction_rate.empty();
+  if (fractions) out.fluid_fraction.resize(block.total);
+  if (rates) out.fluid_fraction_rate.resize(block.total);
   for (std::size_t p = 0; p < block.total; ++p) {  // every padded cell of the block is a cell of E
     const std::array<int, 3> g = block.global_ijk(p);
-    out.kind[p] = e.kind[E.index(g[0] - E.first[0], g[1] - E.first[1], g[2] - E.first[2])];
+    const std::size_t q = E.index(g[0] - E.first[0], g[1] - E.first[1], g[2] - E.first[2]);
+    out.kind[p] = e.kind[q];
+    if (fractions) out.fluid_fraction[p] = e.fluid_fraction[q];
+    if (rates) out.fluid_fraction_rate[p] = e.fluid_fraction_rate[q];
   }
   for (const GhostRecord& r : e.ghosts)
     if (keep_record(r)) {

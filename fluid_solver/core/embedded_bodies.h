@@ -236,6 +236,17 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       surface_.vertices[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     update();
   }
+  std::vector<double> embedded_wall_pressure() const override {
+    return conservative_ && ghost_wall_pressure_ ? wall_pressure_ : std::vector<double>{};
+  }
+  void set_embedded_wall_pressure(const std::vector<double>& slots) override {
+    if (!conservative_ || !ghost_wall_pressure_) return;
+    if (slots.size() != 2 * surface_.faces.size())
+      throw std::invalid_argument(
+          fmt::format("{} embedded wall pressure values for {} surface faces", slots.size(), surface_.faces.size()));
+    wall_pressure_ = slots;
+    restored_wall_pressure_ = true;  // for the next geometry (set_body_state's)
+  }
   void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
   void set_embedded_elapsed(double elapsed) override { inner_->set_embedded_elapsed(elapsed); }
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
@@ -264,6 +275,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
       st.own_ghosts = st.ghosts.size();
       inner_->set_embedded(std::move(st), second_order_);
     }
+    restored_wall_pressure_ = false;  // a restart's first geometry took them
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -279,12 +291,18 @@ class EmbeddedBodiesRun final : public FluidSimulation {
         if (si.image.face >= 0) named[static_cast<std::size_t>(si.image.face)] = 1;
       return named;
     });
-    if (ghost_wall_pressure_) {
-      const coupling::FluidSamples smp = on_block_->samples(*inner_);
+    if (ghost_wall_pressure_ && !restored_wall_pressure_) {
+      coupling::FluidSamples smp = on_block_->samples(*inner_);
+      // Conservative: every block's samples on every block, the whole surface's wall pressures as one rank's for a
+      // checkpoint (a face that two blocks sample has the same sample on both).
+      if (conservative_) smp = on_block_->merge_samples(smp, on_block_->sampled());
       wall_pressure_ = interface::wall_pressure_slots(smp, smp.pressure, inner_->scene().exchange.dispersed);
     }
     inner_->set_embedded(on_block_->state([&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
-      return to_embedded_state<DIM>(g, surface_, geo, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      EmbeddedState st =
+          to_embedded_state<DIM>(g, surface_, geo, nullptr, ghost_wall_pressure_ ? &wall_pressure_ : nullptr);
+      if (conservative_) add_fluid_fractions<DIM>(g, surface_, geo, st);  // over the margin grid
+      return st;
     }),
                          second_order_);
   }

@@ -80,7 +80,7 @@ struct EmbeddedState {
   std::size_t own_ghosts = 0;  // ghost records of cells the block owns (Grid::owns): the blocks' sum is one rank's
   // Per padded cell, the part of its volume on the fluid side of the surface (the plane through the closest surface
   // point with its normal, docs/methods.md §5.8); computed for embedded.conservative only
-  // (add_fluid_fractions), on one rank. Empty: not computed.
+  // (add_fluid_fractions; on a block, over its margin grid). Empty: not computed.
   std::vector<double> fluid_fraction;
   // And its rate of change as the surface moves at its velocities [1/s] (d/dt of the plane's fraction:
   // -(u . n) / sum_d |n_d| dx_d where the plane cuts the cell, else 0); empty where no wall moves.

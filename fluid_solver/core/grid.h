@@ -73,6 +73,14 @@ struct Grid {
       if (g[d] < first[d] || g[d] >= first[d] + n[d]) return false;
     return true;
   }
+  // Whether padded cell p is a cell of the whole mesh: the block's own, or another block's in its ghost layers (not
+  // a ghost layer of the mesh's edge).
+  bool in_mesh(std::size_t p) const {
+    const std::array<int, 3> g = global_ijk(p);
+    for (int d = 0; d < DIM; ++d)
+      if (g[d] < 0 || g[d] >= mesh[d]) return false;
+    return true;
+  }
   double cell_volume() const {
     double v = 1;
     for (int d = 0; d < DIM; ++d) v *= dx[d];

@@ -94,6 +94,11 @@ class FluidSimulation {
   // what needs the other blocks to begin (the embedded bodies' geometry and its far cells). Every block together.
   virtual void start_on_blocks() {}
   virtual void set_body_state(const std::vector<double>& /*vertices*/) {}
+  // A conservative boundary's wall pressures per surface face (2 slots; NaN: none), sampled before a step's
+  // redistribution, which a checkpoint's cells no longer show: they belong to the state too (empty: none). Alike on
+  // every block of a split mesh. set_embedded_wall_pressure: before set_body_state, whose geometry takes them.
+  virtual std::vector<double> embedded_wall_pressure() const { return {}; }
+  virtual void set_embedded_wall_pressure(const std::vector<double>& /*slots*/) {}
   // The accounts that run with the state (a checkpoint's besides the cells): the boundary inflow's raw sums
   // (per phase mass, momentum[dim], energy) then the embedded mass through walls and by cells, per phase; with the
   // time and step count.

@@ -124,13 +124,19 @@ class Solver final : public FluidSimulation {
           for (int k = 0; k < NP; ++k) mass_by_cells_[k] += change * vol * U_.var(Lay::mass(k))[c];
       }
     }
-    if (conservative_ && state.active) {  // solver_conservative.h; one rank only (fluid_layout)
+    // Sorted by the face's high cell, to find a face row's faces; also the order of the conservative boundary's
+    // sums over the faces, the same on a block as on the whole mesh (padded indices keep the mesh's order).
+    for (auto& faces : state.faces)
+      std::sort(faces.begin(), faces.end(),
+                [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
+    if (conservative_ && state.active) {  // solver_conservative.h
       if (state.fluid_fraction.size() != state.kind.size())
         throw std::invalid_argument("embedded.conservative: the geometry gave no fluid fractions of the cells");
       const bool first = !emb_.active && !restored;
       const double elapsed = volumes_elapsed_;
       EmbeddedState old = std::move(emb_);
       vfrac_old_.swap(vfrac_);
+      shares_old_.swap(shares_);
       emb_ = std::move(state);
       fluid_volumes();
       if (first) contents_from_densities();
@@ -140,9 +146,6 @@ class Solver final : public FluidSimulation {
     }
     emb_.blocked_x = emb_.blocked_x || !emb_.blocked[0].empty();
     wall_second_order_ = second_order;
-    for (auto& faces : emb_.faces)  // sorted by the face's high cell, to find a face row's faces
-      std::sort(faces.begin(), faces.end(),
-                [](const WallFace& a, const WallFace& b) { return high_cell(a) < high_cell(b); });
     for (auto& bf : emb_.blocked)
       std::sort(bf.begin(), bf.end(),
                 [](const BlockedFace& a, const BlockedFace& b) { return a.high.fluid_cell < b.high.fluid_cell; });
@@ -439,6 +442,7 @@ class Solver final : public FluidSimulation {
   void redistribute_by_box(std::vector<std::uint8_t>& before);
   void fluid_volumes();
   void volumes_at(double elapsed);
+  void halo_from_blocks(const std::vector<double*>& arrays);
   static constexpr double kMinFluidVolume = 0.5;  // a flow cell's centre is in the fluid: 1/2 for a plane
   void contents_from_densities();
   void contents_to_densities(std::size_t base, int len, bool to_density);
@@ -482,7 +486,11 @@ class Solver final : public FluidSimulation {
   std::vector<double> vfrac_, shares_;
   std::vector<double> vraw_, vrate_;  // the fluid volumes at the geometry's time (unclamped) and their rates [1/s]
   double volumes_elapsed_ = 0.0;      // the time since that geometry's (the steps taken on it)
-  std::vector<double> vfrac_old_, given_, shares_old_;  // the last geometry's volumes; scratch of the redistribution
+  // The last geometry's volumes and shares (how many flow cells held each ghost's fluid part); scratch of the
+  // redistribution; on a block, the volumes and shares to exchange with the other blocks.
+  std::vector<double> vfrac_old_, shares_old_, given_;
+  FieldArray halo_;                      // on a block: arrays to take the other blocks' cells of (halo_from_blocks)
+  std::vector<std::size_t> halo_cells_;  // and those cells, the other blocks' in the ghost layers
   // Marks of the redistribution in the last geometry's categories (not CellKind values).
   static constexpr std::uint8_t kTaking = 250, kGiven = 251;
   std::array<std::vector<double>, 3> side_values_;  // side ghosts' primitives, kPrim each (fill_side_ghosts)

@@ -118,17 +118,44 @@ inline void Solver<DIM, NP, FK>::fluid_volumes() {
     for (const WallFace& f : emb_.faces[D]) shares_[f.solid_cell] = 0.0;
   // (A wall face of a ghost layer's cell, where a body meets the domain's edge, holds no fluid: the layer is not
   // the flow's.)
+  // On a block, another block's cell in a ghost layer is a flow cell like any other (Grid::in_mesh). Its own cells'
+  // sums are complete (their neighbours' neighbours are in the ghost layers); those of the ghost layers come from
+  // their owners.
   for (int D = 0; D < DIM; ++D)
     for (const WallFace& f : emb_.faces[D])
-      if (g_.interior(f.fluid_cell)) shares_[f.solid_cell] += 1.0;
+      if (g_.in_mesh(f.fluid_cell)) shares_[f.solid_cell] += 1.0;
   for (int D = 0; D < DIM; ++D)
     for (const WallFace& f : emb_.faces[D]) {
-      if (!g_.interior(f.fluid_cell)) continue;
+      if (!g_.in_mesh(f.fluid_cell)) continue;
       vraw_[f.fluid_cell] += ff[f.solid_cell] / shares_[f.solid_cell];
       if (moving) vrate_[f.fluid_cell] += rate[f.solid_cell] / shares_[f.solid_cell];
     }
+  if (links_) {
+    if (moving) halo_from_blocks({vraw_.data(), vrate_.data(), shares_.data()});
+    else halo_from_blocks({vraw_.data(), shares_.data()});
+  }
   volumes_elapsed_ = 0.0;
   volumes_at(0.0);
+}
+
+// On a block of a split mesh: the padded arrays' values at the other blocks' cells in the ghost layers (corners
+// too) from their owners, through the ghost exchange of every axis; the mesh edge's ghost layers keep this block's
+// values (a periodic neighbour's would differ from the whole mesh's). Every block calls it together.
+template <int DIM, int NP, FluxKind FK>
+inline void Solver<DIM, NP, FK>::halo_from_blocks(const std::vector<double*>& arrays) {
+  if (halo_cells_.empty())
+    for (std::size_t c = 0; c < g_.total; ++c)
+      if (g_.in_mesh(c) && !g_.interior(c)) halo_cells_.push_back(c);
+  if (halo_.vars != static_cast<int>(arrays.size()) || halo_.cells != g_.total)
+    halo_.resize(static_cast<int>(arrays.size()), g_.total);
+  int v = 0;
+  for (double* a : arrays) std::copy(a, a + g_.total, halo_.var(v++));
+  for (int d = 0; d < DIM; ++d) links_->exchange_ghosts(halo_, d);
+  v = 0;
+  for (double* a : arrays) {
+    const double* h = halo_.var(v++);
+    for (std::size_t c : halo_cells_) a[c] = h[c];
+  }
 }
 
 // The flow cells' fluid volumes a time `elapsed` after the geometry's (the geometric conservation of a moving wall:
@@ -171,15 +198,20 @@ inline void Solver<DIM, NP, FK>::redistribute_changed_cells(EmbeddedState& old, 
   const auto covered = [&](std::size_t c) { return is_flow_cell(before[c]) && !is_flow_cell(emb_.kind[c]); };
   bool any = false;
   for (std::size_t c = 0; c < g_.total && !any; ++c) any = uncovered(c) || covered(c);
+  if (links_) any = links_->any(any);  // every block together: the contents' halo below
   if (!any) return;
-  // The old shares: how many flow cells held each old ghost's fluid part, and that part at `elapsed`.
+  // On a block the cells of the other blocks in the ghost layers give and take as on the whole mesh: their contents
+  // as they are now (a ghost layer's U is stale), with the old volumes and shares, which fluid_volumes took from
+  // their owners. Each block then reduces and fills its own cells itself, the sums over the faces in the mesh's order.
+  if (links_) {
+    std::vector<double*> u;
+    for (int v = 0; v < ncons_; ++v) u.push_back(U_.var(v));
+    halo_from_blocks(u);
+  }
+  // The old shares (shares_old_: how many flow cells held each old ghost's fluid part), and that part at `elapsed`.
   given_.assign(g_.total, 0.0);
-  std::vector<double>& held_by = shares_old_;
-  held_by.assign(g_.total, 0.0);
-  const auto holds = [&](const WallFace& f) { return g_.interior(f.fluid_cell); };
-  for (int D = 0; D < DIM; ++D)
-    for (const WallFace& f : old.faces[D])
-      if (holds(f)) held_by[f.solid_cell] += 1.0;
+  const std::vector<double>& held_by = shares_old_;
+  const auto holds = [&](const WallFace& f) { return g_.in_mesh(f.fluid_cell); };
   const auto part = [&](std::size_t G) {
     const double rate = old.fluid_fraction_rate.empty() ? 0.0 : old.fluid_fraction_rate[G];
     return std::max(old.fluid_fraction[G] + elapsed * rate, 0.0) / held_by[G];
@@ -256,13 +288,40 @@ inline void Solver<DIM, NP, FK>::redistribute_by_box(std::vector<std::uint8_t>& 
     for (int v = 0; v < ncons_; ++v)
       if (NP == 1 || v != Lay::alpha) each(U_.var(v));
   };
+  const auto left = [&](std::size_t c) {
+    return before[c] != kGiven && is_flow_cell(emb_.kind[c]) != is_flow_cell(before[c]);
+  };
+  if (links_) {
+    // On a block a cell's box ends at the block's cells: the same as on the whole mesh where it ends at the mesh's
+    // edge or inside the block (no two such boxes of two blocks overlap, so the blocks' orders agree). One that
+    // reaches across a seam between blocks would differ: an error, agreed by every block, rather than another result.
+    std::string seam;
+    for (int k = 0; k < g_.n[2] && seam.empty(); ++k)
+      for (int j = 0; j < g_.n[1] && seam.empty(); ++j)
+        for (int i = 0; i < g_.n[0] && seam.empty(); ++i) {
+          if (!left(g_.index(i, j, k))) continue;
+          const std::array<int, 3> at{i, j, k};
+          for (int d = 0; d < DIM; ++d)
+            if ((at[d] < r && g_.first[d] > 0) || (at[d] + r >= g_.n[d] && g_.first[d] + g_.n[d] < g_.mesh[d]))
+              seam = fmt::format(
+                  "embedded.conservative on several ranks: the cell ({}, {}, {}) the body covered or uncovered has no "
+                  "flow cell across a wall face, and the box of cells it shares its content with "
+                  "(kRedistributionReach {}) crosses a block seam along axis {}; run it on one rank or with "
+                  "fluid.parallel.ranks placing the seams away from the body's corners",
+                  g_.first[0] + i, g_.first[1] + j, g_.first[2] + k, r, d);
+        }
+    if (links_->any(!seam.empty()))
+      throw std::runtime_error(seam.empty() ? "embedded.conservative on several ranks: another block's covered or "
+                                              "uncovered cell shares its content across a block seam"
+                                            : seam);
+  }
   for (int pass = 0; pass < 2; ++pass)  // uncovered cells first: a covered cell's content may go to them
     for (int k = 0; k < g_.n[2]; ++k)
       for (int j = 0; j < g_.n[1]; ++j)
         for (int i = 0; i < g_.n[0]; ++i) {
           const std::size_t c = g_.index(i, j, k);
-          const bool now = is_flow_cell(emb_.kind[c]), was = is_flow_cell(before[c]);
-          if (before[c] == kGiven || now == was || now != (pass == 0)) continue;
+          const bool now = is_flow_cell(emb_.kind[c]);
+          if (!left(c) || now != (pass == 0)) continue;
           if (now) {  // uncovered: U holds its last ghost state (densities)
             const int count = around(i, j, k, [&](std::size_t n) { return is_flow_cell(before[n]); });
             double vsum = vfrac_[c];

@@ -47,10 +47,14 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     // geometry's volumes (and the cells it covered or uncovered) before the samples read the cells; the states'
     // wall velocities follow in apply_states. Sampled over the last cycle's volumes, a wall cell's pressure lagged
     // by one step's wall motion (p dV / V: +1.8% at 15 m/s, 160 cells) and pumped energy into the piston.
-    if (sim_.scene().embedded.conservative && !on_block_) {
-      EmbeddedState es = to_embedded_state<DIM>(g_, surface_.surface, geo_);
-      add_fluid_fractions<DIM>(g_, surface_.surface, geo_, es);
-      sim_.set_embedded(std::move(es), second_order_);
+    // On blocks the same from the block's geometry (its margin grid), every block together.
+    if (sim_.scene().embedded.conservative) {
+      const auto volumes = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
+        EmbeddedState es = to_embedded_state<DIM>(g, surface_.surface, geo);
+        add_fluid_fractions<DIM>(g, surface_.surface, geo, es);
+        return es;
+      };
+      sim_.set_embedded(on_block_ ? on_block_->state(volumes) : volumes(g_, geo_), second_order_);
     }
     interface::SampleOptions so;
     so.extrapolate_velocity = wall_velocity_;
@@ -137,13 +141,12 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       surface_pressure_[2 * sf + 1] = face_pressure[2 * f + 1];
     }
     const auto records = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
-      return to_embedded_state<DIM>(g, surface_.surface, geo, &surface_speed_,
-                                    ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
+      EmbeddedState es = to_embedded_state<DIM>(g, surface_.surface, geo, &surface_speed_,
+                                                ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
+      if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g, surface_.surface, geo, es);
+      return es;
     };
-    if (on_block_) return sim_.set_embedded(on_block_->state(records), second_order_);
-    EmbeddedState es = records(g_, geo_);
-    if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g_, surface_.surface, geo_, es);
-    sim_.set_embedded(std::move(es), second_order_);
+    sim_.set_embedded(on_block_ ? on_block_->state(records) : records(g_, geo_), second_order_);
   }
 
   std::string segments_csv() const override {

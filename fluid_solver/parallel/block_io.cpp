@@ -149,6 +149,8 @@ std::string write_fluid_part_over_blocks(const std::filesystem::path& dir, const
                     {sim.conserved_cells(), std::move(accounts), sim.time(), sim.steps(), sim.conserved_vars(),
                      sim.body_state(), block_range(comm)},
                     2 * phases, sim.embedded_wall_exchange().empty() ? 0 : phases * (2 + sim.scene().dim));
+  // A conservative boundary's wall pressures, alike on every block (EmbeddedBodiesRun), as one rank writes them.
+  if (const std::vector<double> p = sim.embedded_wall_pressure(); !p.empty()) w.put("fluid.embedded_wall_pressure", p);
   if (boundary) boundary->save(w);
   checkpoint::put_series(w, "fluid", series);
   w.put_text("run.start_totals", run.start_totals.dump());
@@ -185,6 +187,8 @@ FluidRunState read_fluid_part_over_blocks(const std::filesystem::path& set, Flui
   try {
     r = std::make_unique<checkpoint::PartReader>(set / kFluidPart, "fluid");
     e = read_fluid_state(*r, sim.conserved_vars(), block_range(comm), sim.body_state().size());
+    if (!sim.embedded_wall_pressure().empty() && r->has("fluid.embedded_wall_pressure"))
+      sim.set_embedded_wall_pressure(r->doubles("fluid.embedded_wall_pressure", sim.embedded_wall_pressure().size()));
   } catch (const std::exception& x) { error = x.what(); }
   if (comm.any(!error.empty()))
     throw std::runtime_error(

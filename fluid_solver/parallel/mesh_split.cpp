@@ -8,13 +8,6 @@
 namespace cosim::fluid {
 
 parallel::Layout fluid_layout(const FluidScene& scene, int ranks) {
-  // The covered and uncovered cells' contents go to the flow cells around them (embedded/reach.h), which a block
-  // would not yet reach across its borders.
-  if (ranks > 1 && scene.embedded.conservative)
-    throw std::invalid_argument(fmt::format(
-        "{} ranks: fluid.embedded.conservative: true runs on one rank for now (its redistribution of covered and "
-        "uncovered cells does not cross block borders yet); set it to false or run on one rank",
-        ranks));
   const parallel::Index3 cells = scene.cells;
   if (scene.parallel_ranks[0] > 0) {
     const parallel::Layout l{scene.parallel_ranks};

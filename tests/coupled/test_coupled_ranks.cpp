@@ -1,8 +1,9 @@
 // A coupled run whose fluid runs on several MPI ranks (cosim run --fluid-ranks N): each block cuts the interface over
 // its cells and samples the faces centred in it, rank 0 talks to the coupler for all. The fluid, solid and interface
 // snapshots and the interface history equal the one-rank run's bit for bit: the piston on 2 and 3 ranks in 2D and on
-// 2 in 3D, the modified Sod problem, the steel panel and the tungsten blast at small sizes on 2 to 4; a
-// set written on 2 fluid ranks restarts on 3 and ends as the uninterrupted run; a stopped fluid rank ends the run,
+// 2 in 3D, the modified Sod problem, the steel panel and the tungsten blast at small sizes on 2 to 4, the piston and
+// the steel panel with the conservative embedded boundary on 2 and 3; a set written on 2 fluid ranks restarts on 3
+// and ends as the uninterrupted run; a stopped fluid rank ends the run,
 // named in run_summary.json. The fluid's summary proves the ranks were real (ranks and layout).
 #include <gtest/gtest.h>
 
@@ -90,6 +91,37 @@ TEST(CoupledRanks, ThePapersScenesOnFluidRanksEqualTheOneRankRun) {
                 read_text(many / "coupler" / "interface_history.csv"))
           << c.scene << " on " << c.ranks[i] << " fluid ranks";
     }
+  }
+}
+
+// The conservative embedded boundary (fluid.embedded.conservative) on fluid ranks: the volumes the cells' contents
+// fill and the covered and uncovered cells' exchanges cross the block seams as on one rank, bit for bit: the moving
+// piston on 2 (blocks 2 x 1, its wall crossing cells every cycle) and the steel panel on 3 (1 x 3).
+TEST(CoupledRanks, TheConservativeBoundaryOnFluidRanksEqualsTheOneRankRun) {
+  struct Case {
+    std::string scene, args;
+    int ranks;
+    std::vector<int> layout;
+    int snapshots;
+  };
+  const std::string conservative = " --set fluid.embedded.conservative=true";
+  const std::vector<Case> cases = {
+      {"piston_2d", "--set coupling.time.end=0.04 --set coupling.output.interval=0.01", 2, {2, 1}, 5},
+      {"shock_panel_2d", "--set coupling.time.end=4e-4 --set coupling.output.interval=5e-5", 3, {1, 3}, 8}};
+  for (const Case& c : cases) {
+    const fs::path one = run_dir("ranks_conservative_" + c.scene + "_1");
+    ASSERT_EQ(cosim_run(scene_file(c.scene), one, c.args + conservative), 0) << run_logs(one);
+    const nlohmann::json s1 = nlohmann::json::parse(read_text(one / "fluid" / "summary.json"));
+    ASSERT_TRUE(s1["embedded"]["conservative"].get<bool>()) << c.scene;
+    const fs::path many = run_dir("ranks_conservative_" + c.scene + "_" + std::to_string(c.ranks));
+    ASSERT_EQ(cosim_run(scene_file(c.scene), many, c.args + conservative + " --fluid-ranks " + std::to_string(c.ranks)),
+              0)
+        << run_logs(many);
+    expect_fluid_ranks(many, c.ranks, c.layout);
+    expect_same_runs(one, many, c.snapshots);
+    EXPECT_EQ(read_text(one / "coupler" / "interface_history.csv"),
+              read_text(many / "coupler" / "interface_history.csv"))
+        << c.scene << " on " << c.ranks << " fluid ranks";
   }
 }
 
