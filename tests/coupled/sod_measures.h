@@ -131,6 +131,25 @@ inline Errors foreground_errors(const Foreground& f) {
   return {e.rho / w, e.u / w, e.p / w};
 }
 
+// L1(rho) of the coupled solution over the domain: the foreground's elements where it lies, the background's flow
+// cells elsewhere (a cell the interface cuts counted whole), each weighted by its area.
+inline double domain_density_error(const Background& b, const Foreground& f) {
+  const auto s = solution();
+  double e = 0, w = 0;
+  const double a = b.dx * b.dy;
+  for (int j = 0; j < b.ny; ++j)
+    for (int i = 0; i < b.nx; ++i)
+      if (b.flow[b.at(i, j)]) {
+        e += a * std::abs(b.rho[b.at(i, j)] - s.sample((b.xc(i) - kX0) / b.t).rho);
+        w += a;
+      }
+  for (std::size_t el = 0; el < f.rho.size(); ++el) {
+    e += f.area[el] * std::abs(f.rho[el] - s.sample((f.xc[el] - kX0) / f.t).rho);
+    w += f.area[el];
+  }
+  return e / w;
+}
+
 // Where the density on the background's middle row crosses `level` going from `from` towards `to` (cell
 // indices), linearly interpolated between flow cells; NaN if it does not.
 inline double row_crossing(const Background& b, double level, int from, int to) {
