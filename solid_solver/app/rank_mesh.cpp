@@ -37,11 +37,21 @@ MeshLoader mesh_read_on_rank_zero(const parallel::GraphComm& comm, MeshBroadcast
     // Every rank takes part in both broadcasts whatever happened on rank 0: no rank waits for one that stopped.
     status = comm.broadcast(status);
     if (!status.empty() && status[0] == kFailed) throw MeshError(status.substr(1));
-    const auto t0 = Clock::now();
-    const std::string packed = comm.broadcast(comm.rank() == 0 ? pack_mesh(mesh) : std::string());
+    auto t0 = Clock::now();
+    std::string packed;
+    if (comm.rank() == 0) {
+      packed = pack_mesh(mesh);
+      record.pack_seconds = since(t0);
+      t0 = Clock::now();
+    }
+    packed = comm.broadcast(packed);
+    if (comm.rank() == 0) record.broadcast_seconds = since(t0);
     record.bytes = static_cast<double>(packed.size());
-    if (comm.rank() != 0) mesh = unpack_mesh(packed, "the mesh broadcast from rank 0");
-    record.broadcast_seconds = since(t0);
+    if (comm.rank() != 0) {
+      t0 = Clock::now();
+      mesh = unpack_mesh(packed, "the mesh broadcast from rank 0");
+      record.unpack_seconds = since(t0);
+    }
     return mesh;
   };
 }
@@ -57,7 +67,9 @@ nlohmann::json mesh_broadcast_record(const parallel::GraphComm& comm, const Mesh
           {"file", comm.broadcast(record.file)},
           {"bytes", record.bytes},
           {"read_seconds", comm.max(record.read_seconds)},
-          {"broadcast_seconds", comm.max(record.broadcast_seconds)}};
+          {"pack_seconds", comm.max(record.pack_seconds)},
+          {"broadcast_seconds", comm.max(record.broadcast_seconds)},
+          {"unpack_seconds", comm.max(record.unpack_seconds)}};
 }
 
 }  // namespace cosim::solid

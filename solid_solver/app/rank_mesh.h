@@ -20,15 +20,17 @@ struct MeshBroadcast {
   std::string file;              // rank 0's path
   double bytes = 0;              // the packed mesh broadcast
   double read_seconds = 0;       // rank 0: opening and parsing the file
-  double broadcast_seconds = 0;  // this rank: packing (rank 0), the mesh's broadcast and unpacking
+  double pack_seconds = 0;       // rank 0: packing the mesh
+  double broadcast_seconds = 0;  // rank 0: its broadcast, until the last byte had left
+  double unpack_seconds = 0;     // the other ranks: unpacking it
 };
 
 // The scene's mesh loader on every rank of `comm` (every rank calls it together, as every rank reads the same scene).
 // Throws MeshError with rank 0's message on every rank when rank 0 could not read the file.
 MeshLoader mesh_read_on_rank_zero(const parallel::GraphComm& comm, MeshBroadcast& record);
 
-// {"read_by_ranks": the ranks that opened the file ([0]), "file", "bytes", "read_seconds", "broadcast_seconds" (the
-// slowest rank's)}; every rank calls it.
+// {"read_by_ranks": the ranks that opened the file ([0]), "file", "bytes", "read_seconds", "pack_seconds",
+// "broadcast_seconds" (rank 0's) and "unpack_seconds" (the slowest rank's)}; every rank calls it.
 nlohmann::json mesh_broadcast_record(const parallel::GraphComm& comm, const MeshBroadcast& record);
 
 }  // namespace cosim::solid
