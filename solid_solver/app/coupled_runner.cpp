@@ -2,11 +2,12 @@
 // coupler's step under the interface pressures of the previous cycle, reports its exterior faces, takes
 // the new face pressures and proposes its stable step. Snapshots when the coupler asks.
 // On several ranks (mpirun -np M solid_solver ..., cosim run --solid-ranks M; docs/parallel.md, "A coupled solid on
-// several ranks"): every rank holds the whole mesh and updates its own nodes (METIS parts, as the standalone run on
-// ranks), rank 0 holds the one connection to the coupler and relays what it receives to every rank (RankRelay). The
-// exterior faces' nodes and elements are shared with every rank each cycle, so that the faces rank 0 reports and the
-// interface loads every rank applies to its own nodes are those of one rank, bit for bit. Rank 0 writes the
-// snapshots, block history, checkpoint part and summary from the state gathered in global order.
+// several ranks"): every rank holds the whole mesh (a Gmsh file read by rank 0 alone and broadcast) and updates its own
+// nodes (METIS parts, as the standalone run on ranks), rank 0 holds the one connection to the coupler and relays what
+// it receives to every rank (RankRelay). The exterior faces' nodes and elements are shared with every rank each cycle,
+// so that the faces rank 0 reports and the interface loads every rank applies to its own nodes are those of one rank,
+// bit for bit. Rank 0 writes the snapshots, block history, checkpoint part and summary from the state gathered in
+// global order.
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -24,6 +25,7 @@
 #include "common/parallel/mpi/graph_comm.h"
 #include "common/parallel/mpi/rank_watchdog.h"
 #include "solid_solver/app/rank_links_mpi.h"
+#include "solid_solver/app/rank_mesh.h"
 #include "solid_solver/app/rank_record.h"
 #include "solid_solver/app/run_summary.h"
 #include "solid_solver/app/runner.h"
@@ -38,8 +40,9 @@ int run_solid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
   const bool root = mpi.rank() == 0, ranks = mpi.size() > 1;
   // One voice for what every rank finds alike (the scene, the set-up); afterwards a rank's own warnings and errors.
   if (!root) spdlog::set_level(spdlog::level::off);
-  SolidRun run = prepare_solid_run(opt, root);
   parallel::GraphComm comm(mpi);
+  MeshBroadcast mesh_read;  // a Gmsh mesh on several ranks: read by rank 0 alone and broadcast (rank_mesh.h)
+  SolidRun run = prepare_solid_run(opt, root, ranks ? mesh_read_on_rank_zero(comm, mesh_read) : MeshLoader());
   if (comm.any(!run.sim)) {
     if (!root) spdlog::set_level(spdlog::level::err);
     return run.sim ? 2 : run.exit_code;
@@ -241,6 +244,7 @@ int run_solid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
     rec.wall = comm.max(res.wall);
     rec.end = energy_over_ranks(*sim, comm);
     rec.extra["parallel"] = parallel_record(comm, *sim, links->part(), cut_faces);
+    if (mesh_read.used) rec.extra["parallel"]["mesh"] = mesh_broadcast_record(comm, mesh_read);
   }
   if (!root) return res.code;
   try {

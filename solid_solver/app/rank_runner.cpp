@@ -1,10 +1,10 @@
 // The standalone solid run over the ranks of an MPI launcher (mpirun -np N solid_solver ...): every rank reads the
-// scene and builds the whole mesh alike, METIS splits its elements (mesh/partition.h), and each rank updates its own
-// nodes and the elements around them (mesh/rank_part.h), bit for bit as one rank would. One snapshot series, block
-// history and summary, written by rank 0 from the state gathered in global order.
-// A failure on one rank (a bad state, an I/O error) ends every rank: that rank writes the summary with its message
-// and aborts the run with its exit code, so no rank waits in an exchange for one that stopped; a silent rank is found
-// by the rank watchdog.
+// scene (a Gmsh mesh file only rank 0 reads, and broadcasts: rank_mesh.h) and builds the whole mesh alike, METIS splits
+// its elements (mesh/partition.h), and each rank updates its own nodes and the elements around them (mesh/rank_part.h),
+// bit for bit as one rank would. One snapshot series, block history and summary, written by rank 0 from the state
+// gathered in global order. A failure on one rank (a bad state, an I/O error) ends every rank: that rank writes the
+// summary with its message and aborts the run with its exit code, so no rank waits in an exchange for one that stopped;
+// a silent rank is found by the rank watchdog.
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -19,6 +19,7 @@
 #include "common/parallel/mpi/graph_comm.h"
 #include "common/parallel/mpi/rank_watchdog.h"
 #include "solid_solver/app/rank_links_mpi.h"
+#include "solid_solver/app/rank_mesh.h"
 #include "solid_solver/app/rank_record.h"
 #include "solid_solver/app/run_summary.h"
 #include "solid_solver/app/runner.h"
@@ -59,12 +60,21 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   const bool root = mpi.rank() == 0;
   // One voice for what every rank finds alike (the scene, the set-up); afterwards a rank's own warnings and errors.
   if (!root) spdlog::set_level(spdlog::level::off);
-  auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
-  if (!loaded) return 2;
+  parallel::GraphComm comm(mpi);
+  // A Gmsh mesh on several ranks: read by rank 0 alone and broadcast (rank_mesh.h); one rank reads it itself.
+  MeshBroadcast mesh_read;
+  const MeshLoader load_mesh = mpi.size() > 1 ? mesh_read_on_rank_zero(comm, mesh_read) : MeshLoader();
+  auto loaded =
+      app::load_scene<SolidScene>(opt, [&](const std::string& file, const std::vector<std::string>& overrides) {
+        return load_solid_scene(file, overrides, load_mesh);
+      });
+  if (comm.any(!loaded)) {  // alike on every rank (the same scene, rank 0's mesh or its error): every rank ends
+    if (!root) spdlog::set_level(spdlog::level::err);
+    return 2;
+  }
   SolidScene scene = std::move(*loaded);
   set_threads_per_rank(scene, mpi);
 
-  parallel::GraphComm comm(mpi);
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<MpiRankLinks> links;
   long cut_faces = 0;
@@ -216,6 +226,7 @@ int run_solid_ranks(const RunOptions& opt, const parallel::MpiSession& mpi) {
   rec.wall = comm.max(res.wall);
   rec.end = energy_over_ranks(*sim, comm);
   rec.extra["parallel"] = parallel_record(comm, *sim, part, cut_faces);
+  if (mesh_read.used) rec.extra["parallel"]["mesh"] = mesh_broadcast_record(comm, mesh_read);
   if (!root) return 0;
   try {
     write_summary(opt.out_dir, *sim, rec);

@@ -73,9 +73,11 @@ void write_summary(const std::filesystem::path& dir, const Simulation& sim, cons
   io::write_file_atomically(dir / "summary.json", j.dump(2) + "\n");
 }
 
-SolidRun prepare_solid_run(const RunOptions& opt, bool make_output) {
+SolidRun prepare_solid_run(const RunOptions& opt, bool make_output, const MeshLoader& load_mesh) {
   SolidRun r;
-  auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
+  auto loaded = app::load_scene<SolidScene>(opt, [&](const std::string& file, const std::vector<std::string>& ov) {
+    return load_solid_scene(file, ov, load_mesh);
+  });
   if (!loaded) return r;
   r.scene = std::move(*loaded);
   if (r.scene.threads > 0) omp_set_num_threads(r.scene.threads);
@@ -99,7 +101,8 @@ int run_solid(const RunOptions& opt, const parallel::MpiSession& mpi) {
   if (opt.check) {
     // The scene and its mesh as a run sets them up, nothing written; one plan line (rank 0).
     if (mpi.rank() != 0) return 0;
-    auto loaded = app::load_scene<SolidScene>(opt, load_solid_scene);
+    auto loaded = app::load_scene<SolidScene>(
+        opt, [](const std::string& file, const std::vector<std::string>& ov) { return load_solid_scene(file, ov); });
     if (!loaded) return 2;
     try {
       Simulation sim(*loaded);

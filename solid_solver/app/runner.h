@@ -30,6 +30,7 @@ struct SolidRun {
   std::unique_ptr<Simulation> sim;
   int exit_code = 2;
 };
-SolidRun prepare_solid_run(const RunOptions& opt, bool make_output = true);
+// `load_mesh`: how a Gmsh mesh is read (scene.h; empty: read_gmsh on this process).
+SolidRun prepare_solid_run(const RunOptions& opt, bool make_output = true, const MeshLoader& load_mesh = {});
 
 }  // namespace cosim::solid

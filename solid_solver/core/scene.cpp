@@ -184,7 +184,7 @@ BoundarySpec read_boundary(Node& n, int dim, const std::set<std::string>& sets) 
 
 }  // namespace
 
-SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
+SolidScene read_solid_scene(Node& root, const std::string& base_dir, const MeshLoader& load_mesh) {
   SolidScene s;
   Node sn = root.child("solid");
   known_keys(sn,
@@ -202,7 +202,7 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
     std::filesystem::path f(s.mesh_file);
     if (f.is_relative() && !base_dir.empty()) f = std::filesystem::path(base_dir) / f;
     try {
-      file_mesh = std::make_shared<Mesh>(read_gmsh(f.string()));
+      file_mesh = std::make_shared<Mesh>(load_mesh ? load_mesh(f.string()) : read_gmsh(f.string()));
     } catch (const MeshError& e) { throw config::ConfigError(fmt::format("{}: {}", mesh.where("file"), e.what())); }
     s.mesh_file = f.string();
     s.dim = file_mesh->dim;
@@ -388,8 +388,8 @@ SolidScene read_solid_scene(Node& root, const std::string& base_dir) {
 }
 
 namespace {
-SolidScene read_document(Node root, const std::string& base_dir) {
-  SolidScene s = read_solid_scene(root, base_dir);
+SolidScene read_document(Node root, const std::string& base_dir, const MeshLoader& load_mesh = {}) {
+  SolidScene s = read_solid_scene(root, base_dir, load_mesh);
   s.name = root.get<std::string>("name", "scene");
   root.get<std::string>("description", "");
   for (const char* other : {"fluid", "coupling", "launcher"}) root.skip(other);
@@ -398,8 +398,9 @@ SolidScene read_document(Node root, const std::string& base_dir) {
 }
 }  // namespace
 
-SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides) {
-  return read_document(config::load_file(file, overrides), config::scene_base_dir(file));
+SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides,
+                            const MeshLoader& load_mesh) {
+  return read_document(config::load_file(file, overrides), config::scene_base_dir(file), load_mesh);
 }
 
 SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -109,10 +110,15 @@ struct SolidScene {
   int threads = 0;
 };
 
+// How a scene gets the mesh of mesh.type: gmsh from the file's path (resolved against the scene's folder): read_gmsh
+// when empty; on several ranks, rank 0 reads it and every rank gets its copy (app/rank_mesh.h). Throws MeshError.
+using MeshLoader = std::function<Mesh(const std::string& path)>;
+
 // Reads the `solid:` section of a scene; skips fluid, coupling and launcher. Throws config::ConfigError.
 // Relative mesh file names are resolved against base_dir (the scene file's directory).
-SolidScene read_solid_scene(config::Node& root, const std::string& base_dir = "");
-SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+SolidScene read_solid_scene(config::Node& root, const std::string& base_dir = "", const MeshLoader& load_mesh = {});
+SolidScene load_solid_scene(const std::string& file, const std::vector<std::string>& overrides = {},
+                            const MeshLoader& load_mesh = {});
 SolidScene parse_solid_scene(const std::string& yaml_text, const std::vector<std::string>& overrides = {});
 
 }  // namespace cosim::solid

@@ -1,9 +1,10 @@
 // A coupled run whose solid runs on several MPI ranks (cosim run --solid-ranks M), alone or with a fluid on ranks:
 // rank 0 of the solid talks to the coupler for all, each rank updates its own nodes. The fluid, solid and interface
 // snapshots and the interface history equal the one-rank run's bit for bit: the piston on (fluid, solid) ranks
-// (1, 2), (3, 2) and (4, 1), the modified Sod problem (Robin and characteristic conditions), the steel panel and the
-// tungsten blast at small sizes; a set written on (1, 1) restarts on (2, 2) and one written on (2, 2) on (1, 1); a
-// stopped or killed solid rank ends the run, named in run_summary.json. The solid's summary proves the ranks were real.
+// (1, 2), (3, 2) and (4, 1), the modified Sod problem (Robin and characteristic conditions), the steel panel (also
+// read from a Gmsh file, by rank 0 alone) and the tungsten blast at small sizes; a set written on (1, 1) restarts on
+// (2, 2) and one written on (2, 2) on (1, 1); a stopped or killed solid rank ends the run, named in run_summary.json.
+// The solid's summary proves the ranks were real.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/types.h>
@@ -95,6 +96,22 @@ TEST(CoupledSolidRanks, ThePapersScenesOnSolidRanksEqualTheOneRankRun) {
     expect_solid_ranks(many, c.solid);
     expect_same_coupled_runs(one, many, c.snapshots);
   }
+}
+
+// The steel panel read from a Gmsh file (configs/shock_panel_2d_gmsh.yaml) with the solid on 2 ranks: rank 0 alone
+// read the file and broadcast the mesh (the solid's summary says which ranks read it); the run equals the one-rank
+// run bit for bit.
+TEST(CoupledSolidRanks, TheGmshPanelOnSolidRanksEqualsTheOneRankRun) {
+  const std::string args = "--set coupling.time.end=4e-4 --set coupling.output.interval=5e-5";
+  const fs::path one = run_dir("solid_ranks_panel_gmsh_1_1"), two = run_dir("solid_ranks_panel_gmsh_1_2");
+  ASSERT_EQ(cosim_run(scene_file("shock_panel_2d_gmsh"), one, args), 0) << run_logs(one);
+  ASSERT_EQ(cosim_run(scene_file("shock_panel_2d_gmsh"), two, args + ranks_args(1, 2)), 0) << run_logs(two);
+  expect_solid_ranks(two, 2);
+  const nlohmann::json s = nlohmann::json::parse(read_text(two / "solid" / "summary.json"));
+  ASSERT_TRUE(s["parallel"].contains("mesh")) << s.dump();
+  EXPECT_EQ(s["parallel"]["mesh"]["read_by_ranks"].get<std::vector<int>>(), std::vector<int>{0}) << s.dump();
+  EXPECT_GT(s["parallel"]["mesh"]["bytes"].get<double>(), 0.0) << s.dump();
+  expect_same_coupled_runs(one, two, 8);
 }
 
 // Checkpoints of the steel panel written with (fluid, solid) ranks (1, 1), resumed from the first set on (2, 2), and

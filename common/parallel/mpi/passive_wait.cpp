@@ -88,8 +88,11 @@ std::string broadcast_over(void* comm, const std::string& from_root) {
   MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm), &r);
   wait_passively(1, &r);
   std::string out = rank == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
-  MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, as_comm(comm), &r);
-  wait_passively(1, &r);
+  constexpr long kChunk = 1L << 30;  // MPI counts are ints: a text of 2 GiB or more goes in pieces
+  for (long at = 0; at < n; at += kChunk) {
+    MPI_Ibcast(out.data() + at, static_cast<int>(std::min(kChunk, n - at)), MPI_CHAR, 0, as_comm(comm), &r);
+    wait_passively(1, &r);
+  }
   return out;
 }
 
