@@ -80,16 +80,24 @@ void barrier_over(void* comm) {
   wait_passively(1, &r);
 }
 
-std::string broadcast_over(void* comm, const std::string& from_root) {
+std::string broadcast_over(void* comm, const std::string& from_root, TextTiming* timing) {
+  const auto t0 = std::chrono::steady_clock::now();
   int rank = 0;
   MPI_Comm_rank(as_comm(comm), &rank);
   long n = static_cast<long>(from_root.size());
   MPI_Request r;
   MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm), &r);
   wait_passively(1, &r);
+  const auto t1 = std::chrono::steady_clock::now();
   std::string out = rank == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
   MPI_Ibcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, as_comm(comm), &r);
   wait_passively(1, &r);
+  if (timing) {
+    timing->wait_s += std::chrono::duration<double>(t1 - t0).count();
+    timing->transfer_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    timing->bytes += static_cast<double>(n);
+    ++timing->calls;
+  }
   return out;
 }
 
