@@ -1,6 +1,7 @@
 // Where the time of a collective of texts went on one rank (a broadcast of rank 0's bytes, an all-gather of every
-// rank's): the first stage (the lengths) waits for the rank that arrives last, or for rank 0 to have its text; the
-// second moves the bytes. Accumulated over the calls given the same record.
+// rank's): the first stage (the lengths, which every rank must have joined before it ends anywhere) waits for the
+// rank that arrives last, rank 0 with its text among them; the second moves the bytes. Accumulated over the calls
+// given the same record.
 #pragma once
 
 namespace cosim::parallel {

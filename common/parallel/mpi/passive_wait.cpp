@@ -84,9 +84,12 @@ std::string broadcast_over(void* comm, const std::string& from_root, TextTiming*
   const auto t0 = std::chrono::steady_clock::now();
   int rank = 0;
   MPI_Comm_rank(as_comm(comm), &rank);
-  long n = static_cast<long>(from_root.size());
+  // The length as the largest of rank 0's and the others' zeros: a reduction, so that the first stage ends on every
+  // rank, rank 0 included, once every rank has come (the wait), and the second moves the bytes alone (the transfer).
+  const long mine = rank == 0 ? static_cast<long>(from_root.size()) : 0;
+  long n = 0;
   MPI_Request r;
-  MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm), &r);
+  MPI_Iallreduce(&mine, &n, 1, MPI_LONG, MPI_MAX, as_comm(comm), &r);
   wait_passively(1, &r);
   const auto t1 = std::chrono::steady_clock::now();
   std::string out = rank == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
