@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <stdexcept>
 
 #include "common/coupling/wire.h"
@@ -47,6 +48,15 @@ Directive decode_directive(const std::string& s) {
   d.reason = j["reason"].get<std::string>();
   d.directory = j["directory"].get<std::string>();
   return d;
+}
+
+// Runs f, adding its seconds to `seconds`.
+template <class F>
+auto timed(double& seconds, F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto out = f();
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
 }
 
 }  // namespace
@@ -96,7 +106,11 @@ Directive RankRelay::next() {
     cycle_ = client_->cycle(), time_ = client_->time();
     return d;
   }
-  const Directive d = decode_directive(relayed([&] { return encode(client_->next()); }));
+  const std::string text = relayed([&] {
+    const Directive received = client_->next();
+    return timed(codec_seconds_, [&] { return encode(received); });
+  });
+  const Directive d = timed(codec_seconds_, [&] { return decode_directive(text); });
   if (d.kind == Directive::Kind::Advance) cycle_ = d.cycle, time_ = d.time;
   return d;
 }
@@ -105,24 +119,34 @@ Faces RankRelay::receive_faces() {
   if (!share_) return client_->receive_faces();
   pb::InterfaceFaces m;
   const std::string bytes = relayed([&] {
-    pb::InterfaceFaces f;
-    to_pb(client_->receive_faces(), f);
-    return f.SerializeAsString();
+    const Faces received = client_->receive_faces();
+    return timed(codec_seconds_, [&] {
+      pb::InterfaceFaces f;
+      to_pb(received, f);
+      return f.SerializeAsString();
+    });
   });
-  if (!m.ParseFromString(bytes)) throw ProtocolError("the interface faces relayed from rank 0 cannot be read");
-  return from_pb(m);
+  return timed(codec_seconds_, [&] {
+    if (!m.ParseFromString(bytes)) throw ProtocolError("the interface faces relayed from rank 0 cannot be read");
+    return from_pb(m);
+  });
 }
 
 InterfaceStates RankRelay::receive_states() {
   if (!share_) return client_->receive_states();
   pb::InterfaceStates m;
   const std::string bytes = relayed([&] {
-    pb::InterfaceStates s;
-    to_pb(client_->receive_states(), s);
-    return s.SerializeAsString();
+    const InterfaceStates received = client_->receive_states();
+    return timed(codec_seconds_, [&] {
+      pb::InterfaceStates s;
+      to_pb(received, s);
+      return s.SerializeAsString();
+    });
   });
-  if (!m.ParseFromString(bytes)) throw ProtocolError("the interface states relayed from rank 0 cannot be read");
-  return from_pb(m);
+  return timed(codec_seconds_, [&] {
+    if (!m.ParseFromString(bytes)) throw ProtocolError("the interface states relayed from rank 0 cannot be read");
+    return from_pb(m);
+  });
 }
 
 void RankRelay::send_faces(const Faces& faces) {

@@ -42,6 +42,9 @@ class RankRelay {
   Scheme scheme() const { return scheme_; }
   double timeout() const { return timeout_; }
   long cycle() const { return cycle_; }
+  // Seconds this rank spent encoding what rank 0 relays (rank 0) and decoding it (every rank): the relay's own work
+  // besides moving the bytes (the share's).
+  double codec_seconds() const { return codec_seconds_; }
   double time() const { return time_; }
 
  private:
@@ -59,6 +62,7 @@ class RankRelay {
   double timeout_ = 0;
   long cycle_ = -1;
   double time_ = 0;
+  double codec_seconds_ = 0;
 };
 
 }  // namespace cosim::coupling

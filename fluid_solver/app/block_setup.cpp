@@ -4,7 +4,9 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <vector>
 
 #include "common/app/rank_failure.h"
 #include "common/app/run_driver.h"
@@ -118,6 +120,31 @@ void record_over_blocks(RunRecord& rec, const FluidScene& scene, const FluidSimu
   const double halo_s = comm.max(comm.halo_seconds()), wait_s = comm.max(comm.halo_wait_seconds());
   rec.extra["parallel"] = parallel_record(comm, scene, halo[0], halo_s, wait_s);
   if (sim.embedded().active) rec.extra["parallel"]["embedded_exchange_bytes"] = halo[1];
+}
+
+nlohmann::json relay_over_blocks(const parallel::CartComm& comm, const parallel::TextTiming& relayed,
+                                 const parallel::TextTiming& samples, double codec_s) {
+  // Each rank's figures in its slots, summed over the ranks (zeros elsewhere): every rank's, in rank order.
+  constexpr std::size_t kFigures = 7;
+  const std::size_t ranks = static_cast<std::size_t>(comm.size()), me = static_cast<std::size_t>(comm.rank());
+  std::vector<double> all(kFigures * ranks, 0.0);
+  const double mine[kFigures] = {relayed.wait_s,     relayed.transfer_s, relayed.bytes, samples.wait_s,
+                                 samples.transfer_s, samples.bytes,      codec_s};
+  for (std::size_t k = 0; k < kFigures; ++k) all[k * ranks + me] = mine[k];
+  comm.sum(all);
+  const auto column = [&](std::size_t k) {
+    return std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(k * ranks),
+                               all.begin() + static_cast<std::ptrdiff_t>((k + 1) * ranks));
+  };
+  double relay_s = 0;
+  for (std::size_t q = 0; q < ranks; ++q)
+    relay_s = std::max(relay_s, all[1 * ranks + q] + all[4 * ranks + q] + all[6 * ranks + q]);
+  return {
+      {"relay_s", relay_s},
+      {"relayed",
+       {{"messages", relayed.calls}, {"wait_s", column(0)}, {"transfer_s", column(1)}, {"bytes", column(2)}}},
+      {"samples", {{"gathers", samples.calls}, {"wait_s", column(3)}, {"transfer_s", column(4)}, {"bytes", column(5)}}},
+      {"codec_s", column(6)}};
 }
 
 }  // namespace cosim::fluid

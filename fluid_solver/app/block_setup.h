@@ -41,4 +41,11 @@ int prepare_output(const app::RunOptions& opt, const parallel::CartComm& comm);
 void record_over_blocks(RunRecord& rec, const FluidScene& scene, const FluidSimulation& sim,
                         const parallel::CartComm& comm);
 
+// What a coupled fluid's rank-0 relay cost each rank (every rank together; docs/parallel.md "A coupled fluid on
+// several ranks"): the broadcasts of what rank 0 received (`relayed`), the samples merged over the blocks
+// (`samples`), the relay's encoding and decoding (`codec_s`), per rank in rank order; relay_s: the slowest rank's
+// transfers and codec, the relay's own work, its waits apart.
+nlohmann::json relay_over_blocks(const parallel::CartComm& comm, const parallel::TextTiming& relayed,
+                                 const parallel::TextTiming& samples, double codec_s);
+
 }  // namespace cosim::fluid

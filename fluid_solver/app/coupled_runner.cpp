@@ -88,7 +88,8 @@ int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
     connection = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phases), restored.cycle,
                                           restored.time);
   coupling::RankRelay::Share share;
-  if (comm.size() > 1) share = [&](const std::string& text) { return comm.broadcast(text); };
+  parallel::TextTiming relayed;  // the relay's broadcasts, for the summary
+  if (comm.size() > 1) share = [&](const std::string& text) { return comm.broadcast(text, &relayed); };
   auto link = std::make_unique<coupling::RankRelay>(std::move(connection), share);
   if (!link->connected()) return 5;
   coupling::RankRelay* client = link.get();
@@ -185,6 +186,9 @@ int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
                            {"max_step_over_stable", max_step_over_stable}};
   if (first) rec.start_totals = totals_json(scene, totals_over_blocks(*sim, comm));
   record_over_blocks(rec, scene, *sim, comm);
+  if (comm.size() > 1)
+    rec.extra["parallel"]["relay"] =
+        relay_over_blocks(comm, relayed, blocks.links->texts_timing(), link->codec_seconds());
   if (!root) return 0;
   try {
     write_summary(opt.out_dir, *sim, rec);

@@ -37,7 +37,11 @@ class CartBlockLinks final : public BlockLinks {
   }
   void exchange_far(int channel, const double* send, double* recv, int width) override;
   bool any(bool local) override { return comm_.any(local); }
-  std::vector<std::string> texts_of_blocks(const std::string& mine) override { return comm_.gather_text(mine, true); }
+  std::vector<std::string> texts_of_blocks(const std::string& mine) override {
+    return comm_.gather_text(mine, true, &texts_timing_);
+  }
+  // The time of texts_of_blocks so far (a coupled fluid's samples merged over the blocks).
+  const parallel::TextTiming& texts_timing() const { return texts_timing_; }
 
  private:
   parallel::CartComm& comm_;
@@ -45,6 +49,7 @@ class CartBlockLinks final : public BlockLinks {
   std::vector<double*> vars_;
   std::array<parallel::SparsePlan, 2> far_plans_;
   std::array<std::vector<std::size_t>, 2> far_send_;
+  parallel::TextTiming texts_timing_;
 };
 
 }  // namespace cosim::fluid

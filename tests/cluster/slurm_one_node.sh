@@ -3,7 +3,8 @@
 # folder): a fluid-only scene submitted with sbatch runs its ranks through srun and ends with the snapshots of one
 # rank, bit for bit; a job cancelled as a time limit ends it (SIGTERM, then SIGKILL) leaves a run that a second job
 # restarts with `cosim run --restart` from its newest checkpoint set, ending as the uninterrupted run; a coupled scene
-# with 2 fluid ranks under srun ends with the fluid, solid and interface snapshots of the one-rank run.
+# with 2 fluid ranks under srun ends with the fluid, solid and interface snapshots of the one-rank run, and so does
+# one with 2 fluid and 2 solid ranks (a job of 4 tasks, SOLID_RANKS=2: two srun steps side by side).
 # Usage: slurm_one_node.sh BUILD_DIR   (as root; exit 77 where slurm-wlm or munge is not installed)
 set -euo pipefail
 build="$(cd "$1" && pwd)"
@@ -44,7 +45,12 @@ pids+=($!)
 for _ in $(seq 50); do [ -S "$work/munge.sock" ] && break; sleep 0.1; done
 
 host="$(hostname)"
-cpus="$(nproc --all)"  # the machine's (plain nproc follows OMP_NUM_THREADS, which CTest sets to 1)
+# The machine's CPUs (plain nproc follows OMP_NUM_THREADS, which CTest sets to 1), at least 4 for the job of 4 tasks
+# (2 fluid and 2 solid ranks): the node claims 4 CPUs on a smaller machine (slurmd takes the configuration's word,
+# SlurmdParameters=config_overrides), so that each job step gets CPUs of its own. (--overcommit would not do: the
+# job would get one CPU, the fluid's step would take it, and the solid's step would wait for it.)
+cpus="$(nproc --all)"
+[ "$cpus" -ge 4 ] || cpus=4
 mkdir -p "$work/state" "$work/spool"
 cat > "$work/slurm.conf" << CONF
 ClusterName=cosimtest
@@ -69,6 +75,7 @@ SelectTypeParameters=CR_Core
 MpiDefault=pmix
 KillWait=5
 ReturnToService=2
+SlurmdParameters=config_overrides
 NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=4000 State=UNKNOWN
 PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
 CONF
@@ -101,10 +108,12 @@ submit() {  # submit RUN OUTPUT [sbatch options] -- [cosim run arguments]
   local opts=()
   while [ "$1" != -- ]; do opts+=("$1"); shift; done
   shift
-  # --overcommit: two tasks also on a one-core machine; a job that cannot start fails the test in 5 minutes, never
-  # waits for ever.
-  timeout 300 sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks=2 --ntasks-per-node=2 --cpus-per-task=1 --overcommit \
-    --output="$output" --export="ALL,SCENE=${job_scene:-$scene},RUN=$run,COSIM=$cosim" "${opts[@]}" "$job_script" "$@"
+  # A job that cannot start fails the test in 5 minutes, never waits for ever.
+  local tasks="${job_tasks:-2}"
+  timeout 300 sbatch --job-name=cosim_slurm_test --nodes=1 --ntasks="$tasks" --ntasks-per-node="$tasks" --cpus-per-task=1 \
+    --output="$output" \
+    --export="ALL,SCENE=${job_scene:-$scene},RUN=$run,COSIM=$cosim,SOLID_RANKS=${job_solid_ranks:-1}" "${opts[@]}" \
+    "$job_script" "$@"
 }
 
 # 2. A batch job of two tasks: cosim starts the fluid's ranks with srun.
@@ -155,5 +164,38 @@ for part in fluid solid coupler; do
     fail "the coupled job's $part snapshots differ from the one-rank run's"
 done
 
-[ "$ok" = 1 ] && echo "one-node SLURM: srun ranks equal one rank, alone and coupled; a cancelled job restarts bit for bit"
+# 5. The same coupled run in a job of four tasks with SOLID_RANKS=2: the fluid's two ranks and the solid's two ranks
+#    in two srun steps; the snapshots again equal the one-rank run's, and the solid's summary has its two METIS parts.
+job_tasks=4 job_solid_ranks=2 job_scene="$coupled" submit "$work/coupled_solid" "$work/job6.out" --wait -- $csets > /dev/null ||
+  { cat "$work/job6.out"; fail "the coupled batch job of 2 fluid and 2 solid ranks failed"; }
+/usr/bin/python3 - "$work/coupled_solid" << 'PY' || fail "the job with solid ranks did not run them under srun"
+import json, sys
+run = sys.argv[1]
+launch = json.load(open(run + "/launch.json"))["commands"]
+fluid = json.load(open(run + "/fluid/summary.json"))["parallel"]
+solid = json.load(open(run + "/solid/summary.json"))
+par = solid["parallel"]
+errors = []
+for part in ("fluid", "solid"):
+    if launch[part][:3] != ["srun", "--ntasks", "2"]:
+        errors.append(f"the {part} starts with {launch[part][:3]}, expected srun --ntasks 2")
+if fluid["ranks"] != 2:
+    errors.append(f"the fluid's summary says {fluid['ranks']} ranks, expected 2")
+if par["ranks"] != 2 or par["layout"] != "metis":
+    errors.append(f"the solid's summary says {par['ranks']} ranks ({par['layout']}), expected 2 (metis)")
+owned = par["elements_per_rank"]
+if len(owned) != 2 or min(owned) <= 0 or sum(owned) != solid["elements"]:
+    errors.append(f"the solid's parts own {owned} of {solid['elements']} elements")
+for e in errors:
+    print(e)
+sys.exit(1 if errors else 0)
+PY
+for part in fluid solid coupler; do
+  /usr/bin/python3 "$source_dir/tests/cluster/same_snapshots.py" "$work/coupled_one/$part" "$work/coupled_solid/$part" ||
+    fail "the job with solid ranks: its $part snapshots differ from the one-rank run's"
+done
+cmp -s "$work/coupled_one/coupler/interface_history.csv" "$work/coupled_solid/coupler/interface_history.csv" ||
+  fail "the job with solid ranks: its interface history differs from the one-rank run's"
+
+[ "$ok" = 1 ] && echo "one-node SLURM: srun ranks equal one rank, alone and coupled (also on solid ranks); a cancelled job restarts bit for bit"
 [ "$ok" = 1 ]

@@ -4,7 +4,8 @@
 // 2 in 3D, the modified Sod problem, the steel panel and the tungsten blast at small sizes on 2 to 4, the piston and
 // the steel panel with the conservative embedded boundary on 2 and 3; a set written on 2 fluid ranks restarts on 3
 // and ends as the uninterrupted run; a stopped fluid rank ends the run,
-// named in run_summary.json. The fluid's summary proves the ranks were real (ranks and layout).
+// named in run_summary.json. The fluid's summary proves the ranks were real (ranks and layout) and records the relay's
+// traffic on every rank.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -24,6 +25,19 @@ void expect_fluid_ranks(const fs::path& run, int ranks, const std::vector<int>& 
   EXPECT_EQ(s["status"].get<std::string>(), "completed");
   EXPECT_EQ(s["parallel"]["ranks"].get<int>(), ranks) << s.dump();
   EXPECT_EQ(s["parallel"]["layout"].get<std::vector<int>>(), layout) << s.dump();
+  // The relay's record: every rank got every message rank 0 relayed (at least a directive, the faces and the states
+  // per cycle) and every rank's samples in each cycle's gather, so the bytes are alike on every rank.
+  const nlohmann::json& relay = s["parallel"]["relay"];
+  ASSERT_TRUE(relay.is_object()) << s.dump();
+  const long cycles = s["coupling"]["cycles"].get<long>();
+  EXPECT_GE(relay["relayed"]["messages"].get<long>(), 3 * cycles) << relay.dump();
+  EXPECT_EQ(relay["samples"]["gathers"].get<long>(), cycles) << relay.dump();
+  for (const char* part : {"relayed", "samples"}) {
+    const auto bytes = relay[part]["bytes"].get<std::vector<double>>();
+    ASSERT_EQ(bytes.size(), static_cast<std::size_t>(ranks)) << relay.dump();
+    EXPECT_GT(bytes[0], 0) << relay.dump();
+    for (double b : bytes) EXPECT_EQ(b, bytes[0]) << part << ": " << relay.dump();
+  }
   const nlohmann::json launch = nlohmann::json::parse(read_text(run / "launch.json"));
   EXPECT_EQ(launch["commands"]["fluid"][0].get<std::string>(), "mpirun") << launch.dump();
 }

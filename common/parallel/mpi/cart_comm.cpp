@@ -229,8 +229,9 @@ void CartComm::exchange_sparse(const SparsePlan& plan, const double* send, doubl
   halo_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<std::string> CartComm::gather_text(const std::string& local, bool to_all) const {
+std::vector<std::string> CartComm::gather_text(const std::string& local, bool to_all, TextTiming* timing) const {
   if (!comm_) return {local};
+  const auto t0 = std::chrono::steady_clock::now();
   const int ranks = size();
   int n = static_cast<int>(local.size());
   std::vector<int> counts(static_cast<std::size_t>(ranks)), displs(static_cast<std::size_t>(ranks), 0);
@@ -238,6 +239,7 @@ std::vector<std::string> CartComm::gather_text(const std::string& local, bool to
   if (to_all) MPI_Iallgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, as_comm(comm_), &r);
   else MPI_Igather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, as_comm(comm_), &r);
   wait_passively(1, &r);
+  const auto t1 = std::chrono::steady_clock::now();
   const bool receives = to_all || rank_ == 0;
   for (int q = 1; q < ranks; ++q) displs[q] = displs[q - 1] + counts[q - 1];
   std::string all(receives ? static_cast<std::size_t>(displs[ranks - 1] + counts[ranks - 1]) : 0, '\0');
@@ -246,14 +248,20 @@ std::vector<std::string> CartComm::gather_text(const std::string& local, bool to
   else
     MPI_Igatherv(local.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR, 0, as_comm(comm_), &r);
   wait_passively(1, &r);
+  if (timing) {
+    timing->wait_s += std::chrono::duration<double>(t1 - t0).count();
+    timing->transfer_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    timing->bytes += static_cast<double>(all.size());
+    ++timing->calls;
+  }
   if (!receives) return {};
   std::vector<std::string> out;
   for (int q = 0; q < ranks; ++q) out.push_back(all.substr(static_cast<std::size_t>(displs[q]), counts[q]));
   return out;
 }
 
-std::string CartComm::broadcast(const std::string& from_root) const {
-  return comm_ ? detail::broadcast_over(comm_, from_root) : from_root;
+std::string CartComm::broadcast(const std::string& from_root, TextTiming* timing) const {
+  return comm_ ? detail::broadcast_over(comm_, from_root, timing) : from_root;
 }
 
 void CartComm::barrier() const {

@@ -20,6 +20,7 @@
 
 #include "common/io/snapshot_writer.h"
 #include "common/parallel/decomposition.h"
+#include "common/parallel/text_timing.h"
 
 namespace cosim::parallel {
 
@@ -109,10 +110,12 @@ class CartComm {
   // count into sparse_bytes().
   void exchange_sparse(const SparsePlan& plan, const double* send, double* recv, int width);
   double sparse_bytes() const { return sparse_bytes_; }
-  // Every rank's text on rank 0 (to_all: on every rank), in rank order (empty elsewhere).
-  std::vector<std::string> gather_text(const std::string& local, bool to_all = false) const;
-  // Rank 0's bytes to every rank.
-  std::string broadcast(const std::string& from_root) const;
+  // Every rank's text on rank 0 (to_all: on every rank), in rank order (empty elsewhere). `timing`, when given, gains
+  // the wait in the lengths' stage and the transfer of the texts.
+  std::vector<std::string> gather_text(const std::string& local, bool to_all = false,
+                                       TextTiming* timing = nullptr) const;
+  // Rank 0's bytes to every rank (`timing` as above).
+  std::string broadcast(const std::string& from_root, TextTiming* timing = nullptr) const;
   void barrier() const;
   // The ranks writing one snapshot file together (MPI-IO through parallel HDF5), rank 0 leading; without MPI, this
   // process alone.

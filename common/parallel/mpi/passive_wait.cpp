@@ -80,18 +80,29 @@ void barrier_over(void* comm) {
   wait_passively(1, &r);
 }
 
-std::string broadcast_over(void* comm, const std::string& from_root) {
+std::string broadcast_over(void* comm, const std::string& from_root, TextTiming* timing) {
+  const auto t0 = std::chrono::steady_clock::now();
   int rank = 0;
   MPI_Comm_rank(as_comm(comm), &rank);
-  long n = static_cast<long>(from_root.size());
+  // The length as the largest of rank 0's and the others' zeros: a reduction, so that the first stage ends on every
+  // rank, rank 0 included, once every rank has come (the wait), and the second moves the bytes alone (the transfer).
+  const long mine = rank == 0 ? static_cast<long>(from_root.size()) : 0;
+  long n = 0;
   MPI_Request r;
-  MPI_Ibcast(&n, 1, MPI_LONG, 0, as_comm(comm), &r);
+  MPI_Iallreduce(&mine, &n, 1, MPI_LONG, MPI_MAX, as_comm(comm), &r);
   wait_passively(1, &r);
+  const auto t1 = std::chrono::steady_clock::now();
   std::string out = rank == 0 ? from_root : std::string(static_cast<std::size_t>(n), '\0');
   constexpr long kChunk = 1L << 30;  // MPI counts are ints: a text of 2 GiB or more goes in pieces
   for (long at = 0; at < n; at += kChunk) {
     MPI_Ibcast(out.data() + at, static_cast<int>(std::min(kChunk, n - at)), MPI_CHAR, 0, as_comm(comm), &r);
     wait_passively(1, &r);
+  }
+  if (timing) {
+    timing->wait_s += std::chrono::duration<double>(t1 - t0).count();
+    timing->transfer_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    timing->bytes += static_cast<double>(n);
+    ++timing->calls;
   }
   return out;
 }

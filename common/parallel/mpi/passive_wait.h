@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 
+#include "common/parallel/text_timing.h"
+
 namespace cosim::parallel::detail {
 
 void wait_passively(int count, MPI_Request* requests);
@@ -16,6 +18,7 @@ void wait_passively(int count, MPI_Request* requests);
 double max_over(void* comm, double local);            // the largest of every rank's `local`
 void sum_over(void* comm, std::span<double> values);  // in place, every rank gets the sums (rank order)
 void barrier_over(void* comm);
-std::string broadcast_over(void* comm, const std::string& from_root);  // rank 0's text on every rank
+// Rank 0's text on every rank; `timing`, when given, gains the wait for the length and the transfer of the bytes.
+std::string broadcast_over(void* comm, const std::string& from_root, TextTiming* timing = nullptr);
 
 }  // namespace cosim::parallel::detail
