@@ -1,6 +1,7 @@
-"""What the coupled benchmark scripts share: the repository paths, the provenance line of a run, timed runs and the
-panel's velocity history."""
+"""What the coupled benchmark scripts share: the repository paths, the provenance line of a run, timed runs (and
+their median over rounds in rotated order) and the panel's velocity history."""
 import csv
+import statistics
 import subprocess
 import sys
 import time
@@ -33,6 +34,16 @@ def timed_run(cmd, log):
     if rc != 0:
         sys.exit(f"failed ({rc}): {' '.join(cmd)}; see {log}")
     return time.perf_counter() - t0
+
+
+def run_rotated(names, repeat, run_one):
+    """{name: median wall time} of run_one(name, r) over `repeat` rounds r, each round starting one variant later (a
+    drift of the machine favours none)."""
+    times = {n: [] for n in names}
+    for r in range(repeat):
+        for name in names[r % len(names):] + names[:r % len(names)]:
+            times[name].append(run_one(name, r))
+    return {n: statistics.median(t) for n, t in times.items()}
 
 
 def panel_history(path):

@@ -14,7 +14,6 @@ Usage: bench/coupled/run_modified_sod.py [--quick] [--repeat N] [--build DIR] [-
 Writes bench/results/coupled_modified_sod_error_vs_time.png and prints a markdown table.
 """
 import argparse
-import statistics
 import sys
 import tempfile
 from pathlib import Path
@@ -25,7 +24,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 from plot_paper_scenes import element_centres, exact_sod, read_fluid, read_solid, snapshots  # noqa: E402
 
-from bench_common import RESULTS, ROOT, provenance, timed_run  # noqa: E402
+from bench_common import RESULTS, ROOT, provenance, run_rotated, timed_run  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -48,8 +47,6 @@ def l1_errors(run):
     return bg, fg
 
 
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="N = 32, 64, 128 and one repeat")
@@ -59,34 +56,36 @@ def main():
     args = ap.parse_args()
     bin_dir = Path(args.build) / "bin"
     work = Path(args.work or tempfile.mkdtemp(prefix="cosim_modified_sod_"))
+    work.mkdir(parents=True, exist_ok=True)
     sizes = [32, 64, 128] if args.quick else [32, 64, 128, 256]
     repeat = 1 if args.quick else args.repeat
     variants = [(mode, order) for mode in ("impedance", "characteristic") for order in (1, 2)]
     scene = ROOT / "configs" / "modified_sod_2d.yaml"
     ref_scene = ROOT / "configs" / "modified_sod_2d_eulerian.yaml"
+    names = variants + ["eulerian"]
+
+    def out_dir(v, n):
+        return work / (f"eulerian_{n}" if v == "eulerian" else f"{v[0]}_o{v[1]}_{n}")
+
     rows = {}
     for n in sizes:
         m = n // 4
-        times = {v: [] for v in variants + ["eulerian"]}
-        for r in range(repeat):
-            order_of_runs = (variants + ["eulerian"])[r % 5:] + (variants + ["eulerian"])[:r % 5]
-            for v in order_of_runs:
-                if v == "eulerian":
-                    out = work / f"eulerian_{n}"
-                    cmd = [str(bin_dir / "fluid_solver"), str(ref_scene), "--out", str(out), "--quiet",
-                           "--set", f"fluid.mesh.cells=[{n},{n}]"]
-                    times[v].append(timed_run(cmd, str(out) + ".log"))
-                    continue
+
+        def one(v, r, n=n, m=m):
+            out = out_dir(v, n)
+            if v == "eulerian":
+                cmd = [str(bin_dir / "fluid_solver"), str(ref_scene), "--out", str(out), "--quiet",
+                       "--set", f"fluid.mesh.cells=[{n},{n}]"]
+            else:
                 mode, order = v
-                out = work / f"{mode}_o{order}_{n}"
                 cmd = [str(bin_dir / "cosim"), "run", str(scene), "--out", str(out), "--quiet",
                        "--set", f"fluid.mesh.cells=[{n},{n}]", "--set", f"solid.mesh.cells=[{m},{m}]",
                        "--set", f"coupling.mode={mode}", "--set", f"fluid.embedded.order={order}"]
-                times[v].append(timed_run(cmd, str(out) + ".log"))
-        for v in variants + ["eulerian"]:
-            out = work / (f"eulerian_{n}" if v == "eulerian" else f"{v[0]}_o{v[1]}_{n}")
-            bg, fg = l1_errors(str(out))
-            rows[(v, n)] = (statistics.median(times[v]), bg, fg)
+            return timed_run(cmd, str(out) + ".log")
+        wall = run_rotated(names, repeat, one)
+        for v in names:
+            bg, fg = l1_errors(str(out_dir(v, n)))
+            rows[(v, n)] = (wall[v], bg, fg)
 
     print(f"Modified Sod (paper 9.4), L1(rho) at t = 0.28 against wall time; {provenance(bin_dir)}; "
           f"median of {repeat} run(s)\n")

@@ -18,15 +18,13 @@ scenes, one curve per treatment).
 Usage: bench/coupled/run_wall_treatments.py [--quick] [--repeat N] [--build DIR] [--work DIR]
 """
 import argparse
-import statistics
 import sys
 import tempfile
 from pathlib import Path
 
 import matplotlib
-import numpy as np
 
-from bench_common import RESULTS, ROOT, panel_history, provenance, timed_run
+from bench_common import RESULTS, ROOT, panel_history, provenance, run_rotated, timed_run
 from run_modified_sod import l1_errors
 
 matplotlib.use("Agg")
@@ -38,13 +36,39 @@ TREATMENTS = [("first order", ["--set", "fluid.embedded.order=1"]),
 STYLE = {"first order": "o--", "second order (default)": "s-", "conservative": "^-."}
 
 
-def run_rotated(names, repeat, run_one):
-    """{name: median wall time} of run_one(name, r) over `repeat` rounds, each round starting one variant later."""
-    times = {n: [] for n in names}
-    for r in range(repeat):
-        for name in names[r % len(names):] + names[:r % len(names)]:
-            times[name].append(run_one(name, r))
-    return {n: statistics.median(t) for n, t in times.items()}
+def run_treatments(cosim, work, repeat, label, scene, sizes, solid_cells, measure):
+    """{(treatment, n): measure's dict of the first round's run, with the median wall time `wall`}: the scene (a
+    configs/ file) on an n x n background, its solid on solid_cells(n) cells, for each n in sizes and each treatment
+    (the treatments' order rotated per round), into work/<label>_<treatment>_<n>_<round>; measure(out) reads a run's
+    output folder."""
+    names = [t[0] for t in TREATMENTS]
+    sets = dict(TREATMENTS)
+
+    def out_dir(name, n, r):
+        return work / f"{label}_{name.split()[0]}_{n}_{r}"
+
+    results = {}
+    for n in sizes:
+        def one(name, r, n=n):
+            out = out_dir(name, n, r)
+            return timed_run([cosim, "run", str(ROOT / "configs" / scene), "--out", str(out), "--quiet", "--set",
+                              f"fluid.mesh.cells=[{n},{n}]", "--set", f"solid.mesh.cells={solid_cells(n)}"]
+                             + sets[name], str(out) + ".log")
+        wall = run_rotated(names, repeat, one)
+        for name in names:
+            results[(name, n)] = dict(measure(out_dir(name, n, 0)), wall=wall[name])
+    return results
+
+
+def panel_peak(out):
+    """The panel's peak mean x velocity of a run."""
+    return dict(peak=float(panel_history(out / "solid" / "block_history.csv")[1].max()))
+
+
+def sod_errors(out):
+    """L1(rho) against the exact solution, background flow cells and foreground elements."""
+    bg, fg = l1_errors(str(out))
+    return dict(bg=bg, fg=fg)
 
 
 def main():
@@ -59,37 +83,17 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     repeat = 1 if args.quick else args.repeat
     names = [t[0] for t in TREATMENTS]
-    sets = dict(TREATMENTS)
-    tag = {n: n.split()[0] for n in names}
 
     # 9.5: the panel's peak against the default at the finest size.
     panel_sizes = [50, 100] if args.quick else [50, 100, 200]
-    panel = {}
-    for n in panel_sizes:
-        def one(name, r, n=n):
-            out = work / f"panel_{tag[name]}_{n}_{r}"
-            return timed_run([cosim, "run", str(ROOT / "configs/shock_panel_2d.yaml"), "--out", str(out), "--quiet",
-                              "--set", f"fluid.mesh.cells=[{n},{n}]", "--set", f"solid.mesh.cells=[{n // 10},{n // 2}]"]
-                             + sets[name], str(out) + ".log")
-        wall = run_rotated(names, repeat, one)
-        for name in names:
-            t, v = panel_history(work / f"panel_{tag[name]}_{n}_0" / "solid" / "block_history.csv")
-            panel[(name, n)] = dict(peak=float(v.max()), wall=wall[name])
+    panel = run_treatments(cosim, work, repeat, "panel", "shock_panel_2d.yaml", panel_sizes,
+                           lambda n: f"[{n // 10},{n // 2}]", panel_peak)
     ref = panel[("second order (default)", max(panel_sizes))]["peak"]
 
     # 9.4: L1(rho) against the exact solution.
     sod_sizes = [32, 64] if args.quick else [32, 64, 128, 256]
-    sod = {}
-    for n in sod_sizes:
-        def one(name, r, n=n):
-            out = work / f"sod_{tag[name]}_{n}_{r}"
-            return timed_run([cosim, "run", str(ROOT / "configs/modified_sod_2d.yaml"), "--out", str(out), "--quiet",
-                              "--set", f"fluid.mesh.cells=[{n},{n}]", "--set", f"solid.mesh.cells=[{n // 4},{n // 4}]"]
-                             + sets[name], str(out) + ".log")
-        wall = run_rotated(names, repeat, one)
-        for name in names:
-            bg, fg = l1_errors(str(work / f"sod_{tag[name]}_{n}_0"))
-            sod[(name, n)] = dict(bg=bg, fg=fg, wall=wall[name])
+    sod = run_treatments(cosim, work, repeat, "sod", "modified_sod_2d.yaml", sod_sizes,
+                         lambda n: f"[{n // 4},{n // 4}]", sod_errors)
 
     print(f"Embedded wall treatments; {provenance(Path(args.build) / 'bin')}; median of {repeat} run(s)\n")
     print(f"Blast on a steel panel (9.5), panel n/10 x n/2; reference: the default at {max(panel_sizes)}^2, peak "

@@ -114,6 +114,7 @@ EmbeddedState restrict_to_block(const EmbeddedState& e, const Grid<DIM>& E, cons
   out.max_wall_speed = e.max_wall_speed;
   out.blocked_x = e.blocked_x;  // the margin's answer; the caller's is the whole mesh's (EmbeddedBodiesRun)
   out.far_cells = far_e.size();
+  out.wall_sources = e.wall_sources;  // the records keep their sources' indices
   out.kind.resize(block.total);
   // embedded.conservative: the fluid fractions and their rates of the padded cells too (E's are the whole mesh's).
   const bool fractions = !e.fluid_fraction.empty(), rates = !e.fluid_fraction_rate.empty();

@@ -33,13 +33,38 @@ inline std::array<bool, 3> periodic_directions(const FluidScene& s) {
   return p;
 }
 
-// The solver's view of one cycle's geometry.
+// The wall velocity and wall pressure of each wall source (set_wall_values).
 // `wall_normal_speed` (coupled runs): per Surface face, the interface normal velocity u_I . n of the
-// coupler (paper eq. 22); it replaces the normal component of the surface velocity at the ghosts'
-// boundary intercepts. Null: the surface velocity as it is (prescribed motion).
+// coupler (paper eq. 22); it replaces the normal component of the surface velocity at the source. Null: the surface
+// velocity as it is (prescribed motion).
 // `wall_pressure`: per Surface face, 2 values (phase 0, phase 1; NaN: none) of p_I, the coupler's or, for the
 // scene's bodies, the fluid's pressure extrapolated to the wall, from which the ghost pressures are
 // extrapolated (ghost_fill.h). Null: ghosts copy the image point's pressure.
+inline std::vector<WallValue> wall_values(const std::vector<WallSource>& sources,
+                                          const std::vector<double>* wall_normal_speed = nullptr,
+                                          const std::vector<double>* wall_pressure = nullptr) {
+  std::vector<WallValue> out(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const WallSource& w = sources[i];
+    WallValue& v = out[i];
+    v.velocity = w.velocity;
+    if (w.face < 0) continue;
+    const auto f = static_cast<std::size_t>(w.face);
+    if (wall_normal_speed) {
+      const double un = (*wall_normal_speed)[f];
+      const double vn = embedded::dot(w.velocity, w.normal);
+      for (int d = 0; d < 3; ++d) v.velocity[d] += (un - vn) * w.normal[d];
+    }
+    if (wall_pressure) {
+      for (int k = 0; k < 2; ++k) v.pressure[k] = (*wall_pressure)[2 * f + k];
+      v.has_pressure = std::isfinite(v.pressure[0]);
+    }
+  }
+  return out;
+}
+
+// The solver's view of one cycle's geometry, its wall velocities and pressures those of wall_values (one wall source
+// per surface point they are taken at: e.wall_sources, which set_embedded_walls sets again in place).
 template <int DIM>
 EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
                                 const embedded::EmbeddedGeometry<DIM>& geo,
@@ -48,25 +73,15 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
   EmbeddedState e;
   e.active = true;
   e.kind = geo.category;
-  // The wall velocity at a point of Surface face `face` with normal n: the surface's, its normal part replaced
-  // by the coupler's interface speed when there is one.
-  const auto wall_velocity = [&](int face, const embedded::Vec3& n, embedded::Vec3 v) {
-    if (wall_normal_speed && face >= 0) {
-      const double un = (*wall_normal_speed)[static_cast<std::size_t>(face)];
-      const double vn = embedded::dot(v, n);
-      for (int d = 0; d < 3; ++d) v[d] += (un - vn) * n[d];
-    }
-    return v;
+  const auto source = [&](int face, const embedded::Vec3& n, const embedded::Vec3& v) {
+    e.wall_sources.push_back(WallSource{face, n, v});
+    return static_cast<int>(e.wall_sources.size() - 1);
   };
   const auto record = [&](const embedded::ImagePoint& ip) {
     GhostRecord r;
     r.cell = ip.cell;
     r.normal = ip.normal;
-    r.wall_velocity = wall_velocity(ip.face, ip.normal, ip.wall_velocity);
-    if (wall_pressure && ip.face >= 0) {
-      for (int k = 0; k < 2; ++k) r.wall_pressure[k] = (*wall_pressure)[2 * static_cast<std::size_t>(ip.face) + k];
-      r.has_wall_pressure = std::isfinite(r.wall_pressure[0]);
-    }
+    r.wall = source(ip.face, ip.normal, ip.wall_velocity);
     r.distance = -ip.phi;
     r.image_distance = ip.image_distance;
     r.stencil_size = ip.stencil_size;
@@ -74,20 +89,27 @@ EmbeddedState to_embedded_state(const Grid<DIM>& g, const embedded::Surface& s,
     r.weights = ip.weights;
     return r;
   };
+  e.wall_sources.reserve(geo.image_points.size() + geo.side_images.size());
   e.ghosts.reserve(geo.image_points.size());
   for (const auto& ip : geo.image_points) e.ghosts.push_back(record(ip));
   for (const auto& si : geo.side_images)  // sorted by direction, flow cell, side
     e.side_ghosts[static_cast<std::size_t>(si.direction)].push_back(
         SideGhost{record(si.image), si.flow_cell, si.across_high, si.blocked, si.face_distance});
   build_wall_faces<DIM>(g, geo.centres.phi, e);
-  orient_wall_faces<DIM>(e, [&](std::size_t cell, std::array<double, 3>& n, std::array<double, 3>& v) {
-    const embedded::BandPoint* bp = geo.centres.at(cell);
-    if (!bp || bp->face < 0) return false;
-    n = bp->normal;
-    v = wall_velocity(bp->face, bp->normal, embedded::face_velocity(s, bp->face, bp->bary));
-    return true;
-  });
+  orient_wall_faces<DIM>(
+      e,
+      [&](std::size_t cell, std::array<double, 3>& n) {
+        const embedded::BandPoint* bp = geo.centres.at(cell);
+        if (!bp || bp->face < 0) return false;
+        n = bp->normal;
+        return true;
+      },
+      [&](std::size_t cell) {
+        const embedded::BandPoint* bp = geo.centres.at(cell);
+        return source(bp->face, bp->normal, embedded::face_velocity(s, bp->face, bp->bary));
+      });
   build_thin_body_faces<DIM>(g, e);
+  set_wall_values(e, wall_values(e.wall_sources, wall_normal_speed, wall_pressure));
   e.blocked_x = !e.blocked[0].empty();
   for (const auto& v : s.velocities) {
     double q = 0;
@@ -248,6 +270,7 @@ class EmbeddedBodiesRun final : public FluidSimulation {
     restored_wall_pressure_ = true;  // for the next geometry (set_body_state's)
   }
   void set_embedded(EmbeddedState st, bool second_order) override { inner_->set_embedded(std::move(st), second_order); }
+  void set_embedded_walls(const std::vector<WallValue>& values) override { inner_->set_embedded_walls(values); }
   void set_embedded_elapsed(double elapsed) override { inner_->set_embedded_elapsed(elapsed); }
   const EmbeddedState& embedded() const override { return inner_->embedded(); }
   std::vector<double> embedded_categories() const override { return inner_->embedded_categories(); }

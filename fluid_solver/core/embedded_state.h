@@ -16,6 +16,21 @@ enum class CellKind : std::uint8_t { Fluid = 0, FluidCut = 1, SolidCut = 2, Ghos
 
 inline bool is_flow_cell(std::uint8_t k) { return k <= static_cast<std::uint8_t>(CellKind::FluidCut); }
 
+// The surface point a record's wall velocity and wall pressure are taken at (EmbeddedState::wall_sources): a coupled
+// cycle sets them again in place from the coupler's interface states (FluidSimulation::set_embedded_walls).
+struct WallSource {
+  int face = -1;                            // the Surface face (-1: none)
+  std::array<double, 3> normal{0, 0, 0};    // the normal there
+  std::array<double, 3> velocity{0, 0, 0};  // the surface's velocity there
+};
+
+// A wall source's values for the records (embedded_bodies.h wall_values).
+struct WallValue {
+  std::array<double, 3> velocity{0, 0, 0};
+  bool has_pressure = false;
+  std::array<double, 2> pressure{0, 0};  // [Pa], per phase
+};
+
 // A ghost or solid-cut cell: its state comes from the image point (paper step 3, docs/methods.md §5.3).
 struct GhostRecord {
   std::size_t cell = 0;                   // padded cell index
@@ -24,6 +39,7 @@ struct GhostRecord {
   double distance = 0;                   // |phi| of the cell centre [m]
   double image_distance = 0;             // |x_IP - x_G| [m] (2 |phi| for a mirror image point)
   int stencil_size = 0;                  // flow cells used at the image point
+  int wall = -1;                         // its WallSource (-1: none)
   std::array<std::size_t, 8> stencil{};  // padded indices
   std::array<double, 8> weights{};       // sum to 1
   // Interface pressure p_I per phase at the boundary intercept (paper step 5 "p_* = p_I": the coupler's, or
@@ -41,6 +57,7 @@ struct WallFace {
   std::size_t fluid_cell4 = 0;            // extrapolation (each == the one before if none)
   std::size_t solid_cell = 0;             // cell 0: ghost or solid-cut
   bool solid_on_high_side = true;         // the solid cell is at +e_D of the fluid cell
+  int wall = -1;                          // the WallSource of its wall velocity (-1: none)
   std::array<double, 3> normal{0, 0, 0};  // interface normal n_I (solid -> fluid)
   std::array<double, 3> wall_velocity{0, 0, 0};  // interface velocity u_I
   double d = 0.5;  // distance from the fluid cell centre to the interface point I, in cells
@@ -85,6 +102,32 @@ struct EmbeddedState {
   // And its rate of change as the surface moves at its velocities [1/s] (d/dt of the plane's fraction:
   // -(u . n) / sum_d |n_d| dx_d where the plane cuts the cell, else 0); empty where no wall moves.
   std::vector<double> fluid_fraction_rate;
+  // Where the records' wall velocities and pressures come from (GhostRecord::wall, WallFace::wall); empty for states
+  // not built from a surface.
+  std::vector<WallSource> wall_sources;
 };
+
+// Sets the wall velocities and pressures of every record with a wall source to `values` (one per source).
+inline void set_wall_values(EmbeddedState& e, const std::vector<WallValue>& values) {
+  const auto ghost = [&](GhostRecord& r) {
+    if (r.wall < 0) return;
+    const WallValue& v = values[static_cast<std::size_t>(r.wall)];
+    r.wall_velocity = v.velocity;
+    r.has_wall_pressure = v.has_pressure;
+    r.wall_pressure = v.pressure;
+  };
+  const auto face = [&](WallFace& f) {
+    if (f.wall >= 0) f.wall_velocity = values[static_cast<std::size_t>(f.wall)].velocity;
+  };
+  for (GhostRecord& r : e.ghosts) ghost(r);
+  for (int D = 0; D < 3; ++D) {
+    for (WallFace& f : e.faces[D]) face(f);
+    for (SideGhost& sg : e.side_ghosts[D]) ghost(sg.ghost);
+    for (BlockedFace& bf : e.blocked[D]) {
+      face(bf.low);
+      face(bf.high);
+    }
+  }
+}
 
 }  // namespace cosim::fluid

@@ -116,6 +116,10 @@ class FluidSimulation {
   // Embedded boundary of this cycle (categories, ghost records, wall faces); an inactive state
   // switches it off. `second_order` selects the face-state modification of paper steps 5-6.
   virtual void set_embedded(EmbeddedState state, bool second_order) = 0;
+  // The wall velocities and pressures of the embedded state set last, in place (set_wall_values: one value per
+  // EmbeddedState::wall_sources entry): the geometry, its volumes and the cells stay (a coupled cycle's interface
+  // states, after the geometry of its faces).
+  virtual void set_embedded_walls(const std::vector<WallValue>& values) = 0;
   // The state holds the cells as `elapsed` after the embedded geometry just set (a restored coupled cycle: its state
   // is after the step on that geometry); embedded.conservative reads its contents over the volumes of that time.
   virtual void set_embedded_elapsed(double elapsed) = 0;

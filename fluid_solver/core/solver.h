@@ -164,6 +164,13 @@ class Solver final : public FluidSimulation {
       W_ = std::move(w);
     }
   }
+  void set_embedded_walls(const std::vector<WallValue>& values) override {
+    if (values.size() != emb_.wall_sources.size())
+      throw std::invalid_argument(
+          fmt::format("embedded state: {} wall values for {} wall sources", values.size(), emb_.wall_sources.size()));
+    set_wall_values(emb_, values);
+    primitives_valid_ = false;  // as after set_embedded
+  }
   const EmbeddedState& embedded() const override { return emb_; }
   void set_embedded_elapsed(double elapsed) override {
     if (!conservative_ || !emb_.active) return;

@@ -53,6 +53,7 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
         set_cells_away<DIM>(g, e, D, f);
         f.normal = gr.normal;
         f.wall_velocity = gr.wall_velocity;
+        f.wall = gr.wall;
         const double pf = phi[n], ps = phi[c];
         f.d = pf - ps > 0 ? std::min(1.0, std::max(0.0, pf / (pf - ps))) : 0.5;
         faces.push_back(f);
@@ -64,18 +65,19 @@ void build_wall_faces(const Grid<DIM>& g, const std::vector<double>& phi, Embedd
 // The wall a grid face crosses: the ghost's closest point may lie on another face of the body than the one the
 // grid line F -> G passes through (near an edge or a corner of a box its normal can be perpendicular to the line,
 // and a mirror about it leaves the velocity through the grid face unchanged: mass leaks through the wall). Of the
-// ghost's wall and the flow cell's own wall (its closest surface point: `flow_wall(F, normal, velocity)` returns
-// false when there is none), the one whose normal lies closest to the line is used, and where neither has
-// |n_D| >= 0.2 (a normal nearly perpendicular to the line: a corner) the face is mirrored about the grid face.
-template <int DIM, class FlowWall>
-void orient_wall_faces(EmbeddedState& e, const FlowWall& flow_wall) {
+// ghost's wall and the flow cell's own wall (its closest surface point: `flow_wall(F, normal)` returns false when
+// there is none), the one whose normal lies closest to the line is used (the flow cell's: its wall source is
+// `flow_source(F)`, whose velocity set_wall_values sets), and where neither has |n_D| >= 0.2 (a normal nearly
+// perpendicular to the line: a corner) the face is mirrored about the grid face.
+template <int DIM, class FlowWall, class FlowSource>
+void orient_wall_faces(EmbeddedState& e, const FlowWall& flow_wall, const FlowSource& flow_source) {
   for (int D = 0; D < DIM; ++D)
     for (WallFace& f : e.faces[D]) {
-      std::array<double, 3> n{0, 0, 0}, v{0, 0, 0};
+      std::array<double, 3> n{0, 0, 0};
       const double towards = f.solid_on_high_side ? -1.0 : 1.0;  // n_D of a wall facing the flow cell along D
-      if (flow_wall(f.fluid_cell, n, v) && towards * n[D] > towards * f.normal[D]) {
+      if (flow_wall(f.fluid_cell, n) && towards * n[D] > towards * f.normal[D]) {
         f.normal = n;
-        f.wall_velocity = v;
+        f.wall = flow_source(f.fluid_cell);
       }
       if (towards * f.normal[D] < 0.2) {
         f.normal = {0, 0, 0};
@@ -108,6 +110,7 @@ void build_thin_body_faces(const Grid<DIM>& g, EmbeddedState& e) {
       set_cells_away<DIM>(g, e, D, f);
       f.normal = sg.ghost.normal;
       f.wall_velocity = sg.ghost.wall_velocity;
+      f.wall = sg.ghost.wall;
       f.d = sg.face_distance;
       return f;
     };

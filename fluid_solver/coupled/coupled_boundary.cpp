@@ -49,12 +49,8 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
     // by one step's wall motion (p dV / V: +1.8% at 15 m/s, 160 cells) and pumped energy into the piston.
     // On blocks the same from the block's geometry (its margin grid), every block together.
     if (sim_.scene().embedded.conservative) {
-      const auto volumes = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
-        EmbeddedState es = to_embedded_state<DIM>(g, surface_.surface, geo);
-        add_fluid_fractions<DIM>(g, surface_.surface, geo, es);
-        return es;
-      };
-      sim_.set_embedded(on_block_ ? on_block_->state(volumes) : volumes(g_, geo_), second_order_);
+      set_state(nullptr, nullptr);
+      state_set_ = true;
     }
     interface::SampleOptions so;
     so.extrapolate_velocity = wall_velocity_;
@@ -104,6 +100,19 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       embedded::build_geometry<DIM>(g_, surface_.surface, opt_, geo_);
     }
     geometry_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state_set_ = false;
+  }
+
+  // The solver's state of the geometry built last, with the wall speeds and pressures per surface face (null: the
+  // surface's velocity, no wall pressure) and, for a conservative boundary, the cells' fluid fractions. On blocks
+  // from the block's geometry (its margin grid), every block together.
+  void set_state(const std::vector<double>* speed, const std::vector<double>* pressure) {
+    const auto records = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
+      EmbeddedState es = to_embedded_state<DIM>(g, surface_.surface, geo, speed, pressure);
+      if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g, surface_.surface, geo, es);
+      return es;
+    };
+    sim_.set_embedded(on_block_ ? on_block_->state(records) : records(g_, geo_), second_order_);
   }
 
   void apply_states(const coupling::InterfaceStates& st) override {
@@ -140,13 +149,12 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
       surface_pressure_[2 * sf] = face_pressure[2 * f];
       surface_pressure_[2 * sf + 1] = face_pressure[2 * f + 1];
     }
-    const auto records = [&](const Grid<DIM>& g, const embedded::EmbeddedGeometry<DIM>& geo) {
-      EmbeddedState es = to_embedded_state<DIM>(g, surface_.surface, geo, &surface_speed_,
-                                                ghost_wall_pressure_ ? &surface_pressure_ : nullptr);
-      if (sim_.scene().embedded.conservative) add_fluid_fractions<DIM>(g, surface_.surface, geo, es);
-      return es;
-    };
-    sim_.set_embedded(on_block_ ? on_block_->state(records) : records(g_, geo_), second_order_);
+    const std::vector<double>* pressure = ghost_wall_pressure_ ? &surface_pressure_ : nullptr;
+    // The geometry's state set in receive_faces (conservative): only its wall velocities and pressures change, in
+    // place (the same values as a new state's); otherwise (a non-conservative cycle, a restored one) the state with
+    // them.
+    if (state_set_) sim_.set_embedded_walls(wall_values(sim_.embedded().wall_sources, &surface_speed_, pressure));
+    else set_state(&surface_speed_, pressure);
   }
 
   std::string segments_csv() const override {
@@ -174,6 +182,7 @@ class CoupledBoundaryImpl final : public CoupledBoundary {
   coupling::Faces faces_;  // of this cycle, with its step and states: what a checkpoint keeps
   coupling::InterfaceStates states_;
   double dt_ = 0;
+  bool state_set_ = false;  // receive_faces gave the solver the state of the geometry built last
   std::vector<double> face_speed_, surface_speed_, surface_pressure_;
   double geometry_seconds_ = 0;
 };
