@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -30,6 +31,7 @@
 #include "common/coupling/endpoints.h"
 #include "common/util/progress.h"
 #include "launcher/energy_account.h"
+#include "launcher/output_activity.h"
 #include "launcher/process.h"
 #include "launcher/python_paths.h"
 #include "launcher/rank_launcher.h"
@@ -413,8 +415,11 @@ int run(const LaunchOptions& opt) {
   const double start_time = now_s();
   double last_progress = 0;
   int finished = 0;
-  const double grace = 10.0;  // after a clean exit, the others have this long to finish
-  double first_exit = 0;
+  // After a clean exit the others have `grace` seconds to finish, counted afresh while one writes (its output
+  // folder or the checkpoint sets change: a large final snapshot), so only a silent one is stopped.
+  const double grace = end_grace_seconds();
+  double first_exit = 0, last_written = 0, last_look = 0;
+  std::vector<OutputActivity> written(children.size());
   while (finished < static_cast<int>(children.size())) {
     if (g_stop) {
       if (tty && !opt.quiet) std::cerr << "\n";
@@ -439,15 +444,28 @@ int run(const LaunchOptions& opt) {
         return failed.exit_code;
       }
     }
-    if (first_exit > 0 && finished < static_cast<int>(children.size()) && now_s() - first_exit > grace) {
+    if (first_exit > 0 && finished < static_cast<int>(children.size()) && now_s() - last_look >= 0.5) {
+      last_look = now_s();
+      for (std::size_t i = 0; i < children.size(); ++i) {
+        if (!children[i].running) continue;
+        OutputActivity a = output_activity(fs::absolute(out) / children[i].name);
+        const OutputActivity sets = output_activity(checkpoints);
+        a.bytes += sets.bytes, a.files += sets.files, a.latest = std::max(a.latest, sets.latest);
+        if (!(a == written[i])) last_written = now_s();
+        written[i] = a;
+      }
+    }
+    if (first_exit > 0 && finished < static_cast<int>(children.size()) &&
+        now_s() - std::max(first_exit, last_written) > grace) {
       for (auto& c : children)
         if (c.running) {
-          std::cerr << fmt::format("cosim: {} still running {:.0f} s after the others ended; stopping it\n",
-                                   c.describe(), grace);
+          const std::string why =
+              fmt::format("{} still running {:.0f} s after the others ended, writing nothing", c.name, grace);
+          std::cerr << fmt::format("cosim: {}; stopping it ({})\n", why, c.describe());
           const Child hung = c;
           stop_children();
           std::cerr << tail(c.log, 15);
-          summarise("failed", fmt::format("{} still running {:.0f} s after the others ended", c.name, grace), &hung);
+          summarise("failed", why, &hung);
           return 1;
         }
     }

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <thread>
 
 #include "common/coupling/client.h"
@@ -211,4 +213,38 @@ TEST(CouplingClient, SilentCouplerIsDeclaredDead) {
   // seen with six processes on the two cores), well inside the 5 s in which a silent peer must be noticed.
   EXPECT_LT(waited, 2.5);
   EXPECT_GT(waited, 0.9);
+}
+
+// A solver that goes on after the others ended is stopped only once it has written nothing to its output folder for
+// the launcher's grace (COSIM_END_GRACE_S, 1 s here): one still writing its last output for 3 s completes the run,
+// one silent for 3 s is stopped and named.
+TEST(CouplingLauncher, ASolverStillWritingAfterTheOthersEndedIsWaitedFor) {
+  for (const bool writing : {true, false}) {
+    const fs::path dir = test_dir(writing ? "late_writer" : "late_silent");
+    const fs::path scene = write_scene(dir, "  mode: impedance\n  time: {end: 0.002}\n  predictor: none\n");
+    // The piston, then 3 s of appending to a file in its --out folder every 0.25 s (or of silence).
+    const fs::path wrapper = dir / "late_solid.sh";
+    std::ofstream(wrapper) << "#!/bin/sh\n/usr/bin/python3 " << (python_dir() / "rigid_piston.py").string()
+                           << " --mass 2.5 --area 0.025 --left -1 --right 0 \"$@\" || exit $?\n"
+                           << "out=; prev=; for a in \"$@\"; do [ \"$prev\" = --out ] && out=$a; prev=$a; done\n"
+                           << (writing ? "i=0; while [ $i -lt 12 ]; do echo $i >> \"$out/last_output.txt\"; sleep "
+                                         "0.25; i=$((i+1)); done\n"
+                                       : "sleep 3\n");
+    fs::permissions(wrapper, fs::perms::owner_all);
+    const fs::path run = dir / "run";
+    ::setenv("COSIM_END_GRACE_S", "1", 1);
+    const int rc =
+        run_cosim(scene.string() + " --out " + run.string() + " " + fluid_exe() + " --solid-exe " + wrapper.string(),
+                  dir / "cosim.log");
+    ::unsetenv("COSIM_END_GRACE_S");
+    const std::string summary = read_file(run / "run_summary.json");
+    if (writing) {
+      EXPECT_EQ(rc, 0) << read_file(dir / "cosim.log");
+      EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos) << summary;
+    } else {
+      EXPECT_EQ(rc, 1) << read_file(dir / "cosim.log");
+      EXPECT_NE(summary.find("solid still running 1 s after the others ended, writing nothing"), std::string::npos)
+          << summary;
+    }
+  }
 }
