@@ -86,7 +86,7 @@ int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
   std::unique_ptr<coupling::Client> connection;
   if (root)
     connection = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phases), restored.cycle,
-                                          restored.time);
+                                          restored.time, comm.size());
   coupling::RankRelay::Share share;
   if (comm.size() > 1) share = [&](const std::string& text) { return comm.broadcast(text); };
   auto link = std::make_unique<coupling::RankRelay>(std::move(connection), share);
