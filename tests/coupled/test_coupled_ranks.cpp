@@ -29,9 +29,7 @@ void expect_fluid_ranks(const fs::path& run, int ranks, const std::vector<int>& 
   EXPECT_EQ(launch["commands"]["fluid"][0].get<std::string>(), "mpirun") << launch.dump();
   const nlohmann::json run_summary = nlohmann::json::parse(read_text(run / "run_summary.json"));
   for (const auto& p : run_summary["processes"])
-    if (p["name"] == "fluid") {
-      EXPECT_EQ(p["ranks"].get<int>(), ranks) << run_summary.dump();
-    }
+    if (p["name"] == "fluid") { EXPECT_EQ(p["ranks"].get<int>(), ranks) << run_summary.dump(); }
 }
 
 }  // namespace
