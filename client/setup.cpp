@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "client/handle.h"
 #include "common/config/config.h"
@@ -120,6 +121,14 @@ int cosim_set_restart(cosim_client* c, long long cycle, double time) {
     if (cycle < 0) throw std::invalid_argument("cosim_set_restart: negative cycle");
     h.options.restarted_from = static_cast<long>(cycle);
     h.options.restart_time = time;
+  });
+}
+int cosim_set_ranks(cosim_client* c, int ranks) {
+  return with(c, [&](cosim_client& h) {
+    if (ranks < 1 || static_cast<unsigned>(ranks) > coupling::kMaxHelloRanks)
+      throw std::invalid_argument("cosim_set_ranks: " + std::to_string(ranks) + ", expected 1 to " +
+                                  std::to_string(coupling::kMaxHelloRanks) + " MPI ranks");
+    h.options.ranks = static_cast<std::uint32_t>(ranks);
   });
 }
 int cosim_set_connect_timeout(cosim_client* c, double seconds) {

@@ -90,6 +90,9 @@ std::string Hub::check_hello(const pb::Envelope& e) const {
         return fmt::format("Hello.phase_min_pressure[{}]: {}, expected a finite pressure [Pa]", k,
                            hello.phase_min_pressure(k));
   }
+  if (hello.ranks() > coupling::kMaxHelloRanks)
+    return fmt::format("Hello.ranks: {}, expected the number of MPI ranks the solver speaks for (1 to {}; 0: 1)",
+                       hello.ranks(), coupling::kMaxHelloRanks);
   const Role r = coupling::from_pb(hello.role());
   if (peer(r).connected)
     return fmt::format("this run already has a {}: {}", coupling::role_name(r), peer(r).describe(r));
@@ -173,6 +176,7 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
     p.id = id;
     p.program = e->hello().program();
     p.pid = e->hello().pid();
+    p.ranks = coupling::hello_ranks(e->hello());
     p.phase_names.assign(e->hello().phase_names().begin(), e->hello().phase_names().end());
     p.phase_min_pressure.assign(e->hello().phase_min_pressure().begin(), e->hello().phase_min_pressure().end());
     p.last_seen = now_s();
@@ -183,7 +187,8 @@ bool Hub::poll_once(int timeout_ms, Incoming& out) {
       blame(coupling::from_pb(e->hello().role()));
       throw PeerLost(p.describe(coupling::from_pb(e->hello().role())) + " vanished during the handshake");
     }
-    spdlog::info("{} connected", p.describe(coupling::from_pb(e->hello().role())));
+    spdlog::info("{} connected, speaking for {} MPI rank(s)", p.describe(coupling::from_pb(e->hello().role())),
+                 p.ranks);
     return false;
   }
   if (known == Role::Coupler) return fail_or_ignore(fmt::format("{} before Hello", coupling::body_name(*e)));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <string>
@@ -40,6 +41,7 @@ struct Peer {
   std::string id;  // ROUTER routing id of its data connection (its heartbeats go to the HeartbeatService)
   std::string program;
   long pid = 0;
+  std::uint32_t ranks = 1;  // MPI ranks it speaks for (Hello.ranks; its rank 0 holds the connection)
   std::vector<std::string> phase_names;
   std::vector<double> phase_min_pressure;        // [Pa] per phase (fluid, optional)
   double last_seen = 0;                          // steady clock [s]

@@ -56,6 +56,10 @@ void write_summary(const std::filesystem::path& dir, const coupler::RunSummary& 
   for (const coupling::Role r : {coupling::Role::Fluid, coupling::Role::Solid})
     j["message_bytes"][coupling::role_name(r)] = {{"received", hub.peer(r).bytes_received},
                                                   {"sent", hub.peer(r).bytes_sent}};
+  // Each solver as its Hello described it (a hand-started `mpirun -np N fluid_solver` included).
+  for (const coupling::Role r : {coupling::Role::Fluid, coupling::Role::Solid})
+    if (const coupler::Peer& p = hub.peer(r); p.connected)
+      j["peers"][coupling::role_name(r)] = {{"program", p.program}, {"pid", p.pid}, {"ranks", p.ranks}};
   io::write_file_atomically(dir / "coupler_summary.json", j.dump(2) + "\n");  // whole, or the earlier one
 }
 }  // namespace

@@ -336,12 +336,14 @@ int run(const LaunchOptions& opt) {
     const std::vector<std::string> program = with_common(command(eff.fluid_cmd, "fluid_solver"), "fluid", true);
     fluid.insert(fluid.end(), program.begin(), program.end());
     children.push_back({"fluid", fluid, out / "fluid.log"});
+    children.back().ranks = eff.fluid_ranks;
   }
   if (plan->has_solid()) {
     std::vector<std::string> solid = rank_launcher(eff.solid_ranks);  // mpirun / srun before the program
     const std::vector<std::string> program = with_common(command(eff.solid_cmd, "solid_solver"), "solid", true);
     solid.insert(solid.end(), program.begin(), program.end());
     children.push_back({"solid", solid, out / "solid.log"});
+    children.back().ranks = eff.solid_ranks;
   }
   // A restart adds to the logs of the earlier attempts, after a line that marks where it begins.
   if (attempt.restart)

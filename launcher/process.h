@@ -22,6 +22,7 @@ struct Child {
   int exit_code = 0;             // 128 + signal when killed by a signal
   int signal = 0;                // the signal that killed it, 0 when it exited
   std::string describe() const;  // "fluid (build/bin/fluid_solver, pid 123)"
+  int ranks = 1;                 // MPI ranks it was started on (mpirun -np N); 1 for a plain process
 };
 
 // Starts c (throws std::runtime_error naming the executable when fork/exec setup fails; a failing exec makes

@@ -175,6 +175,7 @@ void write_run_summary(const std::filesystem::path& out, const RunEnd& end, cons
       p["name"] = c.name;
       p["program"] = c.argv.empty() ? "" : c.argv[0];
       p["pid"] = c.pid;
+      if (c.name != "coupler") p["ranks"] = c.ranks;  // as launched (coupler_summary.json: as its Hello says)
       p["exit"] = exit_description(c);
       p["exit_code"] = c.exit_code;
       p["log"] = c.log.filename().string();

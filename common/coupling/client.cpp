@@ -111,6 +111,7 @@ struct Client::Impl {
     for (const auto& p : opt.phase_names) hello->add_phase_names(p);
     for (double p : opt.phase_min_pressure) hello->add_phase_min_pressure(p);
     hello->set_restarted_from(opt.restarted_from);
+    hello->set_ranks(opt.ranks);
     data.send({encode(e)}, 5000);
     pb::Envelope w = receive("Welcome", opt.connect_timeout);
     if (!w.has_welcome()) protocol_failure(fmt::format("expected Welcome, got {}", body_name(w)));

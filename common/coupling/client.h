@@ -38,6 +38,7 @@ struct ClientOptions {
   std::string program = "solver";          // for the coupler's messages
   std::vector<std::string> phase_names;    // fluid: its phases in sample order
   std::vector<double> phase_min_pressure;  // fluid: the lowest pressure each phase's EOS admits [Pa] (optional)
+  std::uint32_t ranks = 1;                 // MPI ranks this connection speaks for (Hello.ranks; rank 0 connects)
   double connect_timeout = 30.0;           // [s] to wait for the Welcome
   std::uint32_t protocol_version = 0;      // 0: this build's; tests only set another
   // Checked while waiting for the coupler (every 0.1 s): true stops the wait with RunStopped (the solvers pass

@@ -28,15 +28,17 @@ namespace cosim::coupling {
 // Connects the solver of a coupled run (opt.coupler, opt.token) to its coupler: handshake with the scene hash
 // of the same file and overrides. Logs and returns null when that fails (the caller exits with 5).
 // A fluid names its phases and the lowest pressure each admits; a restarted solver passes the cycle and time of
-// the set it restored.
+// the set it restored; a solver on several MPI ranks connects from rank 0 alone and says how many ranks it speaks
+// for (Hello.ranks).
 struct SolverPhases {
   std::vector<std::string> names;
   std::vector<double> min_pressure;  // [Pa]
 };
 inline std::unique_ptr<Client> connect_solver(const app::RunOptions& opt, Role role, const std::string& program,
                                               SolverPhases phases = {}, long restarted_from = 0,
-                                              double restart_time = 0) {
+                                              double restart_time = 0, int ranks = 1) {
   ClientOptions co;
+  co.ranks = static_cast<std::uint32_t>(ranks);
   co.endpoint = opt.coupler;
   co.token = opt.token;
   co.role = role;

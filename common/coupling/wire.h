@@ -11,6 +11,10 @@
 namespace cosim::coupling {
 
 constexpr std::uint32_t kProtocolVersion = pb::PROTOCOL_VERSION_CURRENT;
+// Hello.ranks above this is refused: no solver speaks for more MPI ranks (a larger value is a wrong field).
+constexpr std::uint32_t kMaxHelloRanks = 1000000;
+// Hello.ranks as the peer meant it: 0 (not sent) is one rank.
+inline std::uint32_t hello_ranks(const pb::Hello& h) { return h.ranks() == 0 ? 1u : h.ranks(); }
 
 pb::Role to_pb(Role r);
 Role from_pb(pb::Role r);  // ROLE_UNSPECIFIED -> Coupler is never produced: throws ProtocolError

@@ -4,7 +4,7 @@
 //                       [--protocol-version N] [--dt S] [--phases N] [--velocity V] [--impedance Z]
 //                       [--pressure P] [--pressure-gradient G] [--connect-timeout S] [--out DIR]
 //                       [--extra-proposals N] [--sample-delay-ms T] [--hang-after N] [--min-pressure P]
-//                       [--faces N]
+//                       [--faces N] [--ranks N]
 // fluid: every face sees a fixed state per phase (alpha 1/phases, rho 1.2, u.n 0, p = P + G x_face, z = 408);
 //        it proposes --dt each cycle.
 // solid: two faces of a 1D slab between x = -1 and 0 (normals -x and +x, area 0.025 m^2) moving with the
@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides);
   app.add_option("--out", out);
   app.add_option("--protocol-version", version);
+  std::uint32_t ranks = 1;
+  app.add_option("--ranks", ranks, "Hello.ranks: the MPI ranks it claims to speak for (tests send absurd ones)");
   double connect_timeout = 30.0;
   app.add_option("--connect-timeout", connect_timeout, "seconds to wait for the Welcome");
   app.add_option("--dt", dt);
@@ -134,6 +136,7 @@ int main(int argc, char** argv) {
     o.scene_hash = scene.empty() ? "" : scene_hash(scene, overrides);
     o.program = "scripted_" + role;
     o.protocol_version = version;
+    o.ranks = ranks;
     o.connect_timeout = connect_timeout;
     for (int k = 0; k < phases; ++k) o.phase_names.push_back(fmt::format("phase{}", k));
     if (min_pressure) o.phase_min_pressure.assign(o.phase_names.size(), *min_pressure);

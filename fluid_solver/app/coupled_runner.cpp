@@ -86,7 +86,7 @@ int run_fluid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
   std::unique_ptr<coupling::Client> connection;
   if (root)
     connection = coupling::connect_solver(opt, coupling::Role::Fluid, "fluid_solver", std::move(phases), restored.cycle,
-                                          restored.time);
+                                          restored.time, comm.size());
   coupling::RankRelay::Share share;
   parallel::TextTiming relayed;  // the relay's broadcasts, for the summary
   if (comm.size() > 1) share = [&](const std::string& text) { return comm.broadcast(text, &relayed); };

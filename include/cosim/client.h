@@ -101,6 +101,9 @@ COSIM_API int cosim_set_program(cosim_client* c, const char* name);             
 COSIM_API int cosim_add_phase(cosim_client* c, const char* name, double min_pressure); /* fluid, in sample order */
 COSIM_API int cosim_set_restart(cosim_client* c, long long cycle, double time);        /* restored from a set */
 COSIM_API int cosim_set_connect_timeout(cosim_client* c, double seconds);              /* default 30 s */
+/* A solver on several MPI ranks connects from one of them and says for how many it speaks (1 to 1000000;
+ * default 1). */
+COSIM_API int cosim_set_ranks(cosim_client* c, int ranks);
 
 /* What the command line said ("" when not given; out: "." by default). Valid while the handle lives. */
 COSIM_API const char* cosim_scene_file(const cosim_client* c);

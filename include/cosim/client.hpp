@@ -127,6 +127,7 @@ class Client {
   }
   void set_restart(long long cycle, double time) { check(cosim_set_restart(c_, cycle, time)); }
   void set_connect_timeout(double seconds) { check(cosim_set_connect_timeout(c_, seconds)); }
+  void set_ranks(int ranks) { check(cosim_set_ranks(c_, ranks)); }  // MPI ranks this connection speaks for
   std::string scene_file() const { return cosim_scene_file(c_); }
   std::string out_dir() const { return cosim_out_dir(c_); }
   std::string restart_set() const { return cosim_restart_set(c_); }

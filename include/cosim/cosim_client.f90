@@ -65,6 +65,11 @@ module cosim_client
       type(c_ptr), value :: c
       real(c_double), value :: seconds
     end function
+    integer(c_int) function cosim_set_ranks(c, ranks) bind(c, name="cosim_set_ranks")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: c
+      integer(c_int), value :: ranks
+    end function
     integer(c_int) function cosim_hello(c) bind(c, name="cosim_hello")
       import :: c_int, c_ptr
       type(c_ptr), value :: c
@@ -160,7 +165,7 @@ module cosim_client
       type(c_ptr), value :: c
     end subroutine
   end interface
-  public :: cosim_create, cosim_set_restart, cosim_set_connect_timeout, cosim_hello, cosim_next, &
+  public :: cosim_create, cosim_set_restart, cosim_set_connect_timeout, cosim_set_ranks, cosim_hello, cosim_next, &
     cosim_send_faces, cosim_receive_faces, cosim_faces_get, cosim_faces_vertices, cosim_send_samples, &
     cosim_receive_states, cosim_states_get, cosim_propose_dt, cosim_add_output_seconds, cosim_check, &
     cosim_mode, cosim_scheme, cosim_cycle, cosim_time, cosim_close

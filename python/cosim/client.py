@@ -47,9 +47,12 @@ class Client:
     docs/protocol.md ("Writing a solver client"); close() at the end."""
 
     def __init__(self, endpoint, token, role, scene_hash_, program="python", phase_names=(), connect_timeout=30.0,
-                 restarted_from=0, restart_time=0.0):
+                 restarted_from=0, restart_time=0.0, ranks=1):
         """restarted_from, restart_time: the cycle and time of the checkpoint set a restarted solver restored
-        (docs/protocol.md, "Checkpoints"); the first DtDecision is then that of cycle restarted_from + 1."""
+        (docs/protocol.md, "Checkpoints"); the first DtDecision is then that of cycle restarted_from + 1.
+        ranks: how many MPI ranks this connection speaks for (Hello.ranks, 1 to 1000000)."""
+        if not 1 <= ranks <= 1000000:
+            raise ValueError("ranks: %r, expected 1 to 1000000 MPI ranks" % (ranks,))
         self.endpoint, self.token, self.role = endpoint, token, ROLES[role]
         self.role_name = role
         self.cycle, self.time = (restarted_from, restart_time) if restarted_from > 0 else (-1, 0.0)
@@ -68,6 +71,7 @@ class Client:
         e.hello.pid = os.getpid()
         e.hello.phase_names.extend(phase_names)
         e.hello.restarted_from = restarted_from
+        e.hello.ranks = ranks
         self.sock.send(e.SerializeToString())
         w = self._receive("Welcome", connect_timeout)
         if w.WhichOneof("body") != "welcome":

@@ -105,8 +105,8 @@ int run_solid_coupled(const RunOptions& opt, const parallel::MpiSession& mpi) {
 
   std::unique_ptr<coupling::Client> connection;
   if (root)
-    connection =
-        coupling::connect_solver(opt, coupling::Role::Solid, "solid_solver", {}, restored.cycle, restored.time);
+    connection = coupling::connect_solver(opt, coupling::Role::Solid, "solid_solver", {}, restored.cycle, restored.time,
+                                          mpi.size());
   coupling::RankRelay::Share share;
   if (ranks) share = [&](const std::string& text) { return comm.broadcast(text); };
   auto link = std::make_unique<coupling::RankRelay>(std::move(connection), share);

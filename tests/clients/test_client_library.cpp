@@ -77,6 +77,26 @@ TEST(ClientLibrary, RefusesCallsOutOfOrder) {
   cosim_close(nullptr);
 }
 
+// The protocol this library speaks, and the MPI ranks a solver's Hello may claim (1 to 1000000; the coupler refuses
+// more): a wrong count is refused before any connection, naming the value.
+TEST(ClientLibrary, SpeaksVersion7AndChecksTheRanksOfItsHello) {
+  EXPECT_EQ(cosim_protocol_version(), 7);
+  cosim::client::Client c(cosim::client::Role::Fluid);
+  c.set_ranks(1);
+  c.set_ranks(1000000);
+  for (const int bad : {0, -2, 1000001}) {
+    try {
+      c.set_ranks(bad);
+      FAIL() << "ranks " << bad << " accepted";
+    } catch (const cosim::client::Error& e) {
+      EXPECT_EQ(e.code(), COSIM_E_ARGUMENT);
+      EXPECT_NE(std::string(e.what()).find("cosim_set_ranks: " + std::to_string(bad) + ", expected 1 to 1000000"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // No coupler at the endpoint: the handshake gives up after the connect timeout with COSIM_E_PEER_LOST.
 TEST(ClientLibrary, HelloWithoutACouplerTimesOut) {
   cosim::client::Client c(cosim::client::Role::Solid);

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -47,6 +48,18 @@ inline std::string run_logs(const fs::path& dir) {
   for (const char* p : {"coupler.log", "fluid.log", "solid.log"})
     s += "\n--- " + std::string(p) + ":\n" + read_text(dir / p);
   return s;
+}
+
+// What the coupler recorded of each solver from its Hello (coupler_summary.json "peers"): the MPI ranks it speaks
+// for (the coupler's handshake line says it too, in a run without --quiet:
+// CouplingProcesses.HelloRanksAreRecordedByTheCoupler).
+inline void expect_coupler_peer_ranks(const fs::path& run, int fluid, int solid) {
+  const nlohmann::json c = nlohmann::json::parse(read_text(run / "coupler" / "coupler_summary.json"));
+  ASSERT_TRUE(c.contains("peers")) << c.dump();
+  EXPECT_EQ(c["peers"]["fluid"]["ranks"].get<int>(), fluid) << c.dump();
+  EXPECT_EQ(c["peers"]["solid"]["ranks"].get<int>(), solid) << c.dump();
+  EXPECT_EQ(c["peers"]["fluid"]["program"].get<std::string>(), "fluid_solver") << c.dump();
+  EXPECT_EQ(c["peers"]["solid"]["program"].get<std::string>(), "solid_solver") << c.dump();
 }
 
 // coupler/interface_history.csv: per cycle, area-weighted means over the solid's faces.

@@ -5,7 +5,7 @@
 // the steel panel with the conservative embedded boundary on 2 and 3; a set written on 2 fluid ranks restarts on 3
 // and ends as the uninterrupted run; a stopped fluid rank ends the run,
 // named in run_summary.json. The fluid's summary proves the ranks were real (ranks and layout) and records the relay's
-// traffic on every rank.
+// traffic on every rank; the coupler records the ranks each solver's Hello speaks for.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -40,6 +40,9 @@ void expect_fluid_ranks(const fs::path& run, int ranks, const std::vector<int>& 
   }
   const nlohmann::json launch = nlohmann::json::parse(read_text(run / "launch.json"));
   EXPECT_EQ(launch["commands"]["fluid"][0].get<std::string>(), "mpirun") << launch.dump();
+  const nlohmann::json run_summary = nlohmann::json::parse(read_text(run / "run_summary.json"));
+  for (const auto& p : run_summary["processes"])
+    if (p["name"] == "fluid") { EXPECT_EQ(p["ranks"].get<int>(), ranks) << run_summary.dump(); }
 }
 
 }  // namespace
@@ -48,11 +51,13 @@ TEST(CoupledRanks, ThePistonOnFluidRanksEqualsTheOneRankRun) {
   const std::string args = "--set coupling.time.end=0.04 --set coupling.output.interval=0.01";
   const fs::path one = run_dir("ranks_piston_1");
   ASSERT_EQ(cosim_run(scene_file("piston_2d"), one, args), 0) << run_logs(one);
+  expect_coupler_peer_ranks(one, 1, 1);
   for (const int ranks : {2, 3}) {
     const fs::path many = run_dir("ranks_piston_" + std::to_string(ranks));
     ASSERT_EQ(cosim_run(scene_file("piston_2d"), many, args + " --fluid-ranks " + std::to_string(ranks)), 0)
         << run_logs(many);
     expect_fluid_ranks(many, ranks, {ranks, 1});
+    expect_coupler_peer_ranks(many, ranks, 1);  // Hello.ranks of the fluid's rank 0, for all of them
     expect_same_runs(one, many, 5);
     EXPECT_EQ(read_text(one / "coupler" / "interface_history.csv"),
               read_text(many / "coupler" / "interface_history.csv"));

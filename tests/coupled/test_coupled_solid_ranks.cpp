@@ -64,6 +64,7 @@ TEST(CoupledSolidRanks, ThePistonOnSolidRanksEqualsTheOneRankRun) {
     const fs::path many = run_dir("solid_ranks_piston_" + std::to_string(fluid) + "_" + std::to_string(solid));
     ASSERT_EQ(cosim_run(scene_file("piston_2d"), many, args + ranks_args(fluid, solid)), 0) << run_logs(many);
     if (solid > 1) expect_solid_ranks(many, solid);
+    expect_coupler_peer_ranks(many, fluid, solid);
     const nlohmann::json f = nlohmann::json::parse(read_text(many / "fluid" / "summary.json"));
     EXPECT_EQ(f["parallel"]["ranks"].get<int>(), fluid) << f.dump();
     expect_same_coupled_runs(one, many, 5);

@@ -69,12 +69,12 @@ TEST(CouplingLauncher, FailingProcessIsNamedAndNothingIsLeftRunning) {
   const fs::path scene = write_scene(dir, "  time: {end: 1.0e9}\n");
   const fs::path run = dir / "run";
   const int rc = run_cosim(
-      scene.string() + " --out " + run.string() + " --tcp " + fluid_exe("--protocol-version 7") + " " + piston_exe(),
+      scene.string() + " --out " + run.string() + " --tcp " + fluid_exe("--protocol-version 6") + " " + piston_exe(),
       dir / "cosim.log");
   const std::string log = read_file(dir / "cosim.log");
   EXPECT_NE(rc, 0);
   EXPECT_NE(log.find("failed with exit code"), std::string::npos) << log;
-  EXPECT_NE(log.find("protocol version 7"), std::string::npos) << log;  // the last log lines are shown
+  EXPECT_NE(log.find("protocol version 6"), std::string::npos) << log;  // the last log lines are shown
   EXPECT_NE(read_file(run / "launch.json").find("tcp://127.0.0.1:"), std::string::npos);
   EXPECT_FALSE(process_with_argument(run.string()));
 }

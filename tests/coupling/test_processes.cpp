@@ -76,13 +76,15 @@ TEST(CouplingProcesses, HandshakeAndShortRunComplete) {
   EXPECT_EQ(std::count(hist.begin(), hist.end(), '\n'), 1 + 11) << hist;  // header + cycles 0..10
 }
 
+// A peer of version 6 (before Hello.ranks) is refused, both versions named.
 TEST(CouplingProcesses, VersionMismatchRefusedOnBothSides) {
-  ThreeProcs r("version", kShort, {"--protocol-version", "99"});
+  static_assert(cosim::coupling::kProtocolVersion > 6);
+  ThreeProcs r("version", kShort, {"--protocol-version", "6"});
   wait_all(r.cs, 20);
   EXPECT_EQ(r.cs[0].exit_code, 5);
   EXPECT_EQ(r.cs[1].exit_code, 5);
   EXPECT_NE(r.cs[2].exit_code, 0);
-  const std::string expected = "protocol version 99 of scripted_fluid, the coupler speaks version " +
+  const std::string expected = "protocol version 6 of scripted_fluid, the coupler speaks version " +
                                std::to_string(cosim::coupling::kProtocolVersion);
   EXPECT_NE(r.log(0).find(expected), std::string::npos) << r.log(0);
   EXPECT_NE(r.log(1).find("refused fluid: " + expected), std::string::npos) << r.log(1);
@@ -90,6 +92,34 @@ TEST(CouplingProcesses, VersionMismatchRefusedOnBothSides) {
   EXPECT_TRUE(r.log(2).find("coupler stopped the run: coupler: refused scripted_fluid") != std::string::npos ||
               r.log(2).find("no Welcome from the coupler") != std::string::npos)
       << r.log(2);
+}
+
+// Hello.ranks: what the solver says it speaks for is the coupler's record (coupler_summary.json "peers", the
+// handshake line); not sent (a one-rank solver of an older client) reads as 1.
+TEST(CouplingProcesses, HelloRanksAreRecordedByTheCoupler) {
+  ThreeProcs r("hello_ranks", kShort, {"--ranks", "4"}, {"--ranks", "0"});
+  wait_all(r.cs, 20);
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(r.cs[i].exit_code, 0) << r.cs[i].name << ":\n" << r.log(i);
+  const nlohmann::json c = nlohmann::json::parse(read_file(r.dir / "out" / "coupler_summary.json"));
+  EXPECT_EQ(c["peers"]["fluid"]["ranks"].get<int>(), 4) << c.dump();
+  EXPECT_EQ(c["peers"]["fluid"]["program"].get<std::string>(), "scripted_fluid") << c.dump();
+  EXPECT_EQ(c["peers"]["fluid"]["pid"].get<long>(), static_cast<long>(r.cs[1].pid)) << c.dump();
+  EXPECT_EQ(c["peers"]["solid"]["ranks"].get<int>(), 1) << c.dump();
+  EXPECT_NE(r.log(0).find("connected, speaking for 4 MPI rank(s)"), std::string::npos) << r.log(0);
+}
+
+// An absurd Hello.ranks is the run's own solver misconfigured: refused naming the field and the value.
+TEST(CouplingProcesses, AbsurdHelloRanksAreRefusedNamingTheField) {
+  ThreeProcs r("absurd_ranks", kShort, {"--ranks", "1000001"});
+  wait_all(r.cs, 20);
+  EXPECT_EQ(r.cs[0].exit_code, 5);
+  EXPECT_EQ(r.cs[1].exit_code, 5);
+  EXPECT_NE(r.cs[2].exit_code, 0);
+  const std::string expected = "Hello.ranks: 1000001, expected the number of MPI ranks";
+  EXPECT_NE(r.log(0).find("refused scripted_fluid (pid " + std::to_string(r.cs[1].pid) + "): " + expected),
+            std::string::npos)
+      << r.log(0);
+  EXPECT_NE(r.log(1).find("refused fluid: " + expected), std::string::npos) << r.log(1);
 }
 
 // A Hello without the run's token is a stranger's: it is refused and told why, the coupler logs it and the run

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/coupling/wire.h"
 #include "coupling_test_util.h"
 #include "proto/coupling.pb.h"
 
@@ -30,4 +31,16 @@ TEST(ProtocolDocument, NamesEveryMessageFieldAndEnumValueOfTheProto) {
   EXPECT_GT(names.size(), 80u);
   for (const std::string& n : names)
     EXPECT_TRUE(std::regex_search(doc, std::regex("\\b" + n + "\\b"))) << n << " is not in docs/protocol.md";
+}
+
+// The version the document describes is the one this build speaks: its title and both tables say it.
+TEST(ProtocolDocument, StatesTheCurrentProtocolVersion) {
+  const std::string doc = read_file(fs::path(COSIM_SOURCE_DIR) / "docs" / "protocol.md");
+  const std::string v = std::to_string(cosim::coupling::kProtocolVersion);
+  EXPECT_EQ(doc.rfind("# Coupling protocol (version " + v + ")\n", 0), 0u) << doc.substr(0, 80);
+  EXPECT_NE(doc.find("`PROTOCOL_VERSION_CURRENT` (" + v + ") |"), std::string::npos);
+  EXPECT_NE(doc.find("| `protocol_version` | uint32 | `PROTOCOL_VERSION_CURRENT` (" + v + ") of the sender |"),
+            std::string::npos);
+  EXPECT_EQ(std::regex_search(doc, std::regex("PROTOCOL_VERSION_CURRENT` \\((?!" + v + "\\))\\d+\\)")), false)
+      << "docs/protocol.md names another current version";
 }

@@ -31,7 +31,7 @@ def test_cosim_client_shim_is_the_same_module_content():
     import cosim_client
     assert cosim_client.scene_hash is client.scene_hash
     assert cosim_client.Client is client.Client and cosim_client.CouplingError is client.CouplingError
-    assert cosim_client.pb is pb and cosim_client.PROTOCOL_VERSION == pb.PROTOCOL_VERSION_CURRENT == 6
+    assert cosim_client.pb is pb and cosim_client.PROTOCOL_VERSION == pb.PROTOCOL_VERSION_CURRENT == 7
 
 
 class StandInCoupler(threading.Thread):
@@ -118,7 +118,7 @@ def test_heartbeat_endpoint_takes_the_data_endpoints_host_for_a_wildcard():
 def test_handshake_cycle_and_stop(tmp_path):
     coupler = StandInCoupler(f"ipc://{tmp_path}/c.sock", "t0ken")
     coupler.start()
-    c = client.Client(f"ipc://{tmp_path}/c.sock", "t0ken", "solid", "0123456789abcdef", program="test")
+    c = client.Client(f"ipc://{tmp_path}/c.sock", "t0ken", "solid", "0123456789abcdef", program="test", ranks=3)
     try:
         assert c.scheme == pb.COUPLING_SCHEME_SEQUENTIAL and c.mode == pb.COUPLING_MODE_ROBIN
         beats = coupler.heartbeats()  # on the socket the Welcome named, not the data socket
@@ -133,9 +133,16 @@ def test_handshake_cycle_and_stop(tmp_path):
     hello, faces = coupler.received[0], coupler.received[1]
     assert hello.hello.role == pb.ROLE_SOLID and hello.hello.scene_hash == "0123456789abcdef"
     assert hello.hello.program == "test" and hello.hello.pid == os.getpid()
-    assert hello.header.token == "t0ken" and hello.header.protocol_version == pb.PROTOCOL_VERSION_CURRENT == 6
+    assert hello.header.token == "t0ken" and hello.header.protocol_version == pb.PROTOCOL_VERSION_CURRENT == 7
+    assert hello.hello.ranks == 3  # the MPI ranks this connection speaks for (version 7)
     assert faces.faces.dim == 2 and faces.faces.count == 4 and faces.faces.nodes_per_face == 2
     assert list(faces.faces.normal[:2]) == [-1.0, 0.0] and faces.header.cycle == 0
+
+
+def test_ranks_out_of_range_are_refused_before_connecting():
+    for bad in (0, 1000001):
+        with pytest.raises(ValueError, match="ranks: %d, expected 1 to 1000000" % bad):
+            client.Client("ipc:///nonexistent/c.sock", "t0ken", "solid", "0" * 16, ranks=bad)
 
 
 def test_refusal_names_the_reason(tmp_path):
