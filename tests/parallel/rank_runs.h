@@ -48,21 +48,26 @@ inline std::string launcher(int ranks) {
   return "mpirun --allow-run-as-root --oversubscribe --bind-to none -np " + std::to_string(ranks) + " ";
 }
 
-// SOLVER (fluid_solver, solid_solver) SCENE --out OUT on `ranks` ranks, one thread each, at most `limit_s` seconds.
-inline RankRun run_solver_ranks(const std::string& solver, int ranks, const std::string& scene,
-                                const std::filesystem::path& out, const std::string& extra, int limit_s) {
-  const std::filesystem::path log = out.string() + ".log";
-  std::filesystem::create_directories(out.parent_path());
-  const std::string cmd = "timeout -s KILL " + std::to_string(limit_s) + " " + launcher(ranks) +
-                          std::string(COSIM_BINARY_DIR) + "/bin/" + solver + " " + scene + " --out " + out.string() +
-                          " --quiet --threads 1 " + extra + " > " + log.string() + " 2>&1";
+// Runs the shell command `cmd` (its output into `log`), killed after `limit_s` seconds: exit code, seconds, log.
+inline RankRun run_timed(const std::string& cmd, const std::filesystem::path& log, int limit_s) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int status = std::system(cmd.c_str());
+  const int status =
+      std::system(("timeout -s KILL " + std::to_string(limit_s) + " " + cmd + " > " + log.string() + " 2>&1").c_str());
   RankRun r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   r.log = read_text(log);
   return r;
+}
+
+// SOLVER (fluid_solver, solid_solver) SCENE --out OUT on `ranks` ranks, one thread each, at most `limit_s` seconds.
+inline RankRun run_solver_ranks(const std::string& solver, int ranks, const std::string& scene,
+                                const std::filesystem::path& out, const std::string& extra, int limit_s) {
+  const std::filesystem::path log = out.string() + ".log";
+  std::filesystem::create_directories(out.parent_path());
+  return run_timed(launcher(ranks) + std::string(COSIM_BINARY_DIR) + "/bin/" + solver + " " + scene + " --out " +
+                       out.string() + " --quiet --threads 1 " + extra,
+                   log, limit_s);
 }
 
 inline RankRun run_fluid_ranks(int ranks, const std::string& scene, const std::filesystem::path& out,

@@ -52,16 +52,9 @@ std::string solver() { return std::string(COSIM_BINARY_DIR) + "/bin/solid_solver
 
 // mpirun's MPMD form: rank 0 runs `args`, ranks 1 .. ranks-1 run `args` + `others` (each part a shell word list).
 RankRun run_mpmd(int ranks, const std::string& args, const std::string& others, const fs::path& log, int limit_s) {
-  const std::string cmd = "timeout -s KILL " + std::to_string(limit_s) +
-                          " mpirun --allow-run-as-root --oversubscribe --bind-to none -np 1 " + args + " : -np " +
-                          std::to_string(ranks - 1) + " " + args + " " + others + " > " + log.string() + " 2>&1";
-  const auto t0 = std::chrono::steady_clock::now();
-  const int status = std::system(cmd.c_str());
-  RankRun r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.log = read_text(log);
-  return r;
+  return cosim::test::run_timed("mpirun --allow-run-as-root --oversubscribe --bind-to none -np 1 " + args + " : -np " +
+                                    std::to_string(ranks - 1) + " " + args + " " + others,
+                                log, limit_s);
 }
 
 std::size_t count_of(const std::string& text, const std::string& what) {
